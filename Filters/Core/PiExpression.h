@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PiExpression.h
+ * @brief parser of polynomial expressions in x, y, z and named parameters
+ *
+ * Grammar (whitespace is ignored):
+ *   expression := term (('+' | '-') term)*
+ *   term       := unary (('*' | '/') unary)*          division only by a constant
+ *   unary      := ('-' | '+') unary | power
+ *   power      := primary ('^' unary)?                 exponent: a constant non-negative integer
+ *   primary    := number | name | '(' expression ')'   names: x, y, z or a parameter
+ * Numbers are decimal or scientific (1, 0.5, .5, 2e-3). `-x^2` is `-(x^2)`, and
+ * `a^b^c` is `a^(b^c)`. Errors name what went wrong and the 1-based character position.
+ */
+#ifndef PiExpression_h
+#define PiExpression_h
+
+#include "PiPolynomial.h"
+
+#include <map>
+#include <string>
+
+namespace pisurf
+{
+using ParameterMap = std::map<std::string, double>;
+
+/// Parses `text` into `result`. Returns false and sets `error` (result untouched) on any
+/// syntax error, unknown name, non-constant or negative/fractional exponent, division by
+/// a non-constant or by zero, a degree above MaxDegree or a non-finite coefficient.
+bool ParseExpression(const std::string& text, const ParameterMap& parameters,
+  Polynomial3& result, std::string& error);
+
+/// True if `name` may be a parameter: [A-Za-z_][A-Za-z0-9_]* and not x, y or z.
+bool IsValidParameterName(const std::string& name);
+}
+
+#endif

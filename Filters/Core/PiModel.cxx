@@ -1,0 +1,418 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiModel.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace pisurf
+{
+namespace
+{
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+struct ModelError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void Fail(const std::string& path, const std::string& what)
+{
+  throw ModelError(path + ": " + what);
+}
+
+double Number(const json& v, const std::string& path)
+{
+  if (!v.is_number())
+  {
+    Fail(path, std::string("expected a number, got ") + v.type_name());
+  }
+  const double d = v.get<double>();
+  if (!std::isfinite(d))
+  {
+    Fail(path, "must be a finite number");
+  }
+  return d;
+}
+
+void Vector(const json& v, const std::string& path, double* out, size_t n)
+{
+  if (!v.is_array() || v.size() != n)
+  {
+    Fail(path, "expected an array of " + std::to_string(n) + " numbers");
+  }
+  for (size_t i = 0; i < n; ++i)
+  {
+    out[i] = Number(v[i], path + "[" + std::to_string(i) + "]");
+  }
+}
+
+std::string String(const json& v, const std::string& path)
+{
+  if (!v.is_string())
+  {
+    Fail(path, std::string("expected a string, got ") + v.type_name());
+  }
+  return v.get<std::string>();
+}
+
+// The shape keys each type requires (and is the only one to allow).
+std::vector<std::string> ShapeKeys(PrimitiveType t)
+{
+  switch (t)
+  {
+    case PrimitiveType::Sphere:
+    case PrimitiveType::Cylinder:
+      return { "radius" };
+    case PrimitiveType::Ellipsoid:
+    case PrimitiveType::Hyperboloid1:
+    case PrimitiveType::Hyperboloid2:
+    case PrimitiveType::Paraboloid:
+    case PrimitiveType::HyperbolicParaboloid:
+      return { "radii" };
+    case PrimitiveType::Superellipsoid:
+      return { "radii", "exponent" };
+    case PrimitiveType::Torus:
+      return { "major_radius", "minor_radius" };
+    case PrimitiveType::Plane:
+      return { "normal" };
+    case PrimitiveType::Cone:
+      return { "angle" };
+    case PrimitiveType::Polynomial:
+      return { "expression" };
+    default:
+      return {};
+  }
+}
+
+size_t RadiiCount(PrimitiveType t)
+{
+  return (t == PrimitiveType::Paraboloid || t == PrimitiveType::HyperbolicParaboloid) ? 2 : 3;
+}
+
+PrimitiveSpec ParsePrimitive(const json& j, const std::string& path)
+{
+  if (!j.is_object())
+  {
+    Fail(path, "expected an object");
+  }
+  PrimitiveSpec s;
+  if (!j.contains("type"))
+  {
+    Fail(path, "missing key 'type'");
+  }
+  const std::string type = String(j["type"], path + ".type");
+  if (!TypeFromString(type, s.Type))
+  {
+    Fail(path + ".type", "unknown primitive type '" + type +
+        "' (sphere, ellipsoid, superellipsoid, torus, plane, cylinder, cone, hyperboloid1, "
+        "hyperboloid2, paraboloid, hyperbolic_paraboloid, polynomial)");
+  }
+  const std::vector<std::string> shape = ShapeKeys(s.Type);
+  std::set<std::string> allowed = { "type", "name", "center", "axis", "rotation", "scale",
+    "negate" };
+  allowed.insert(shape.begin(), shape.end());
+  for (auto it = j.begin(); it != j.end(); ++it)
+  {
+    if (!allowed.count(it.key()))
+    {
+      std::string list;
+      for (const auto& k : allowed)
+      {
+        list += (list.empty() ? "" : ", ") + k;
+      }
+      Fail(path, "unknown key '" + it.key() + "' for a " + type + " (allowed: " + list + ")");
+    }
+  }
+  for (const auto& k : shape)
+  {
+    if (!j.contains(k))
+    {
+      Fail(path, "a " + type + " needs the key '" + k + "'");
+    }
+  }
+
+  if (j.contains("name"))
+    s.Name = String(j["name"], path + ".name");
+  if (j.contains("center"))
+    Vector(j["center"], path + ".center", s.Center, 3);
+  if (j.contains("axis") && j.contains("rotation"))
+  {
+    Fail(path, "give either 'axis' or 'rotation', not both");
+  }
+  if (j.contains("axis"))
+  {
+    s.Orient = Orientation::Axis;
+    Vector(j["axis"], path + ".axis", s.Axis, 3);
+  }
+  if (j.contains("rotation"))
+  {
+    const json& r = j["rotation"];
+    const std::string rp = path + ".rotation";
+    if (!r.is_object() || r.size() != 2 || !r.contains("axis") || !r.contains("angle"))
+    {
+      Fail(rp, "expected {\"axis\": [x, y, z], \"angle\": degrees}");
+    }
+    s.Orient = Orientation::Rotation;
+    Vector(r["axis"], rp + ".axis", s.RotationAxis, 3);
+    s.RotationAngle = Number(r["angle"], rp + ".angle");
+  }
+  if (j.contains("scale"))
+    s.Scale = Number(j["scale"], path + ".scale");
+  if (j.contains("negate"))
+  {
+    if (!j["negate"].is_boolean())
+      Fail(path + ".negate", "expected true or false");
+    s.Negate = j["negate"].get<bool>();
+  }
+  if (j.contains("radius"))
+    s.Radius = Number(j["radius"], path + ".radius");
+  if (j.contains("radii"))
+    Vector(j["radii"], path + ".radii", s.Radii, RadiiCount(s.Type));
+  if (j.contains("major_radius"))
+    s.MajorRadius = Number(j["major_radius"], path + ".major_radius");
+  if (j.contains("minor_radius"))
+    s.MinorRadius = Number(j["minor_radius"], path + ".minor_radius");
+  if (j.contains("exponent"))
+  {
+    const double e = Number(j["exponent"], path + ".exponent");
+    if (e != std::floor(e) || e < 2 || e > MaxDegree || static_cast<int>(e) % 2 != 0)
+    {
+      Fail(path + ".exponent", "must be an even integer from 2 to " + std::to_string(MaxDegree));
+    }
+    s.Exponent = static_cast<int>(e);
+  }
+  if (j.contains("normal"))
+    Vector(j["normal"], path + ".normal", s.Normal, 3);
+  if (j.contains("angle"))
+    s.Angle = Number(j["angle"], path + ".angle");
+  if (j.contains("expression"))
+  {
+    s.Expression = String(j["expression"], path + ".expression");
+    if (s.Expression.find_first_not_of(" \t\r\n") == std::string::npos)
+    {
+      Fail(path + ".expression", "empty expression");
+    }
+  }
+  return s;
+}
+
+void ParseTop(const json& j, Model& m)
+{
+  if (!j.is_object())
+  {
+    Fail("model", "the top level must be a JSON object");
+  }
+  static const std::set<std::string> allowed = { "pisurf", "blending", "bounds", "parameters",
+    "primitives", "name", "description" };
+  for (auto it = j.begin(); it != j.end(); ++it)
+  {
+    if (!allowed.count(it.key()))
+    {
+      Fail("model", "unknown key '" + it.key() +
+          "' (allowed: pisurf, blending, bounds, parameters, primitives, name, description)");
+    }
+  }
+  if (!j.contains("pisurf"))
+    Fail("model", "missing key 'pisurf' (the format version, 1)");
+  if (!j["pisurf"].is_number() || j["pisurf"].get<double>() != 1.0)
+    Fail("pisurf", "unsupported version (this reader knows version 1)");
+  if (!j.contains("blending"))
+    Fail("model", "missing key 'blending' (the blending parameter r)");
+  m.Blending = Number(j["blending"], "blending");
+  if (j.contains("name"))
+    m.Name = String(j["name"], "name");
+  if (j.contains("description"))
+    m.Description = String(j["description"], "description");
+  if (j.contains("parameters"))
+  {
+    const json& p = j["parameters"];
+    if (!p.is_object())
+      Fail("parameters", "expected an object {name: number}");
+    for (auto it = p.begin(); it != p.end(); ++it)
+    {
+      if (!IsValidParameterName(it.key()))
+      {
+        Fail("parameters." + it.key(),
+          "invalid parameter name (letters, digits, '_'; not x, y or z)");
+      }
+      m.Parameters[it.key()] = Number(it.value(), "parameters." + it.key());
+    }
+  }
+  if (j.contains("bounds"))
+  {
+    Vector(j["bounds"], "bounds", m.Bounds, 6);
+    if (!ValidBounds(m.Bounds))
+      Fail("bounds", "expected [x0, x1, y0, y1, z0, z1] with x0 < x1, y0 < y1, z0 < z1");
+    m.HasBounds = true;
+  }
+  if (!j.contains("primitives"))
+    Fail("model", "missing key 'primitives'");
+  const json& prims = j["primitives"];
+  if (!prims.is_array())
+    Fail("primitives", "expected an array");
+  if (prims.empty())
+    Fail("primitives", "a model needs at least one primitive");
+  if (prims.size() > MaxPrimitives)
+    Fail("primitives", "more than " + std::to_string(MaxPrimitives) + " primitives");
+  bool unbounded = false;
+  for (size_t i = 0; i < prims.size(); ++i)
+  {
+    const std::string path = "primitives[" + std::to_string(i) + "]";
+    PrimitiveSpec s = ParsePrimitive(prims[i], path);
+    PolynomialFactor f;
+    std::string why;
+    if (!BuildFactor(s, m.Parameters, f, why))
+    {
+      Fail(path + (s.Name.empty() ? "" : " ('" + s.Name + "')"), why);
+    }
+    unbounded = unbounded || !f.Bounded;
+    m.Primitives.push_back(std::move(s));
+  }
+  if (unbounded && !m.HasBounds)
+  {
+    Fail("bounds", "required: the model has an unbounded primitive (plane, cylinder, cone, "
+                   "hyperboloid, paraboloid or polynomial)");
+  }
+}
+}
+
+bool ValidBounds(const double b[6])
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!std::isfinite(b[2 * i]) || !std::isfinite(b[2 * i + 1]) || !(b[2 * i] < b[2 * i + 1]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ParseModel(const std::string& text, Model& model, std::string& error)
+{
+  json j;
+  try
+  {
+    j = json::parse(text, [](int depth, json::parse_event_t, json&) {
+      if (depth > MaxJsonDepth)
+      {
+        throw ModelError("JSON nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
+      }
+      return true;
+    });
+  }
+  catch (const json::parse_error& e)
+  {
+    // e.byte is the offset; report line and column, which editors show.
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i)
+    {
+      if (text[i] == '\n')
+      {
+        ++line;
+        column = 1;
+      }
+      else
+      {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const size_t colon = what.find("syntax error");
+    error = "invalid JSON at line " + std::to_string(line) + ", column " +
+      std::to_string(column) + ": " + (colon != std::string::npos ? what.substr(colon) : what);
+    return false;
+  }
+  catch (const ModelError& e)
+  {
+    error = e.what();
+    return false;
+  }
+  catch (const std::exception& e)
+  {
+    error = std::string("invalid JSON: ") + e.what();
+    return false;
+  }
+  try
+  {
+    Model m;
+    ParseTop(j, m);
+    model = std::move(m);
+    return true;
+  }
+  catch (const ModelError& e)
+  {
+    error = e.what();
+    return false;
+  }
+  catch (const json::exception& e)
+  {
+    error = std::string("invalid model: ") + e.what();
+    return false;
+  }
+}
+
+std::string WriteModel(const Model& m)
+{
+  ojson j;
+  j["pisurf"] = 1;
+  if (!m.Name.empty())
+    j["name"] = m.Name;
+  if (!m.Description.empty())
+    j["description"] = m.Description;
+  j["blending"] = m.Blending;
+  if (m.HasBounds)
+    j["bounds"] = std::vector<double>(m.Bounds, m.Bounds + 6);
+  if (!m.Parameters.empty())
+  {
+    ojson p = ojson::object();
+    for (const auto& kv : m.Parameters)
+      p[kv.first] = kv.second;
+    j["parameters"] = p;
+  }
+  ojson prims = ojson::array();
+  for (const PrimitiveSpec& s : m.Primitives)
+  {
+    ojson q;
+    q["type"] = TypeKey(s.Type);
+    if (!s.Name.empty())
+      q["name"] = s.Name;
+    q["center"] = std::vector<double>(s.Center, s.Center + 3);
+    if (s.Orient == Orientation::Axis)
+      q["axis"] = std::vector<double>(s.Axis, s.Axis + 3);
+    else if (s.Orient == Orientation::Rotation)
+      q["rotation"] = { { "axis", std::vector<double>(s.RotationAxis, s.RotationAxis + 3) },
+        { "angle", s.RotationAngle } };
+    for (const std::string& k : ShapeKeys(s.Type))
+    {
+      if (k == "radius")
+        q[k] = s.Radius;
+      else if (k == "radii")
+        q[k] = std::vector<double>(s.Radii, s.Radii + RadiiCount(s.Type));
+      else if (k == "exponent")
+        q[k] = s.Exponent;
+      else if (k == "major_radius")
+        q[k] = s.MajorRadius;
+      else if (k == "minor_radius")
+        q[k] = s.MinorRadius;
+      else if (k == "normal")
+        q[k] = std::vector<double>(s.Normal, s.Normal + 3);
+      else if (k == "angle")
+        q[k] = s.Angle;
+      else if (k == "expression")
+        q[k] = s.Expression;
+    }
+    if (s.Scale != 1.0)
+      q["scale"] = s.Scale;
+    if (s.Negate)
+      q["negate"] = true;
+    prims.push_back(q);
+  }
+  j["primitives"] = prims;
+  return j.dump(2) + "\n";
+}
+}

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PiModel.h
+ * @brief the .pisurf model (JSON, version 1): strict reading and exact writing
+ *
+ * Top-level keys: "pisurf" (must be 1), "blending" (r), "primitives" (non-empty array),
+ * and optionally "bounds" [x0,x1,y0,y1,z0,z1], "parameters" {name: number},
+ * "name", "description". Each primitive has "type" and the keys of its type (see
+ * PiPrimitiveSpec.h), plus optional "name", "center", "axis" or "rotation"
+ * {"axis": [x,y,z], "angle": degrees}, "scale", "negate". Any other key is an error.
+ * Reading never changes the output model unless the whole text is valid; errors name
+ * the key (as a JSON path like primitives[2].radius) or the line and column.
+ */
+#ifndef PiModel_h
+#define PiModel_h
+
+#include "PiPrimitiveSpec.h"
+
+#include <string>
+#include <vector>
+
+namespace pisurf
+{
+
+struct Model
+{
+  std::string Name;
+  std::string Description;
+  double Blending = 0.0;
+  bool HasBounds = false;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  ParameterMap Parameters;
+  std::vector<PrimitiveSpec> Primitives;
+};
+
+/// Nesting deeper than this in a model file is refused.
+constexpr int MaxJsonDepth = 32;
+/// At most this many primitives in one model file.
+constexpr size_t MaxPrimitives = 1000000;
+
+/// Parses and validates (every primitive is built) a .pisurf text.
+bool ParseModel(const std::string& text, Model& model, std::string& error);
+/// Writes a model as .pisurf JSON that ParseModel reads back to the same function.
+std::string WriteModel(const Model& model);
+/// Checks bounds: six finite numbers with x0 < x1, y0 < y1, z0 < z1.
+bool ValidBounds(const double b[6]);
+}
+
+#endif

@@ -1,0 +1,345 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiPolynomial.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
+
+namespace pisurf
+{
+namespace
+{
+bool TermLess(const Monomial& a, const Monomial& b)
+{
+  return std::tie(a.I, a.J, a.K) < std::tie(b.I, b.J, b.K);
+}
+
+// Powers x^0..x^n of one coordinate.
+inline void Powers(double x, int n, double* out)
+{
+  out[0] = 1.0;
+  for (int i = 1; i <= n; ++i)
+  {
+    out[i] = out[i - 1] * x;
+  }
+}
+
+// Univariate product, ascending coefficients.
+std::vector<double> Mul1(const std::vector<double>& a, const std::vector<double>& b)
+{
+  std::vector<double> r(a.size() + b.size() - 1, 0.0);
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    for (size_t j = 0; j < b.size(); ++j)
+    {
+      r[i + j] += a[i] * b[j];
+    }
+  }
+  return r;
+}
+}
+
+Polynomial3 Polynomial3::Constant(double c)
+{
+  Polynomial3 p;
+  p.AddTerm(c, 0, 0, 0);
+  return p;
+}
+
+Polynomial3 Polynomial3::Variable(int axis)
+{
+  Polynomial3 p;
+  p.AddTerm(1.0, axis == 0, axis == 1, axis == 2);
+  return p;
+}
+
+void Polynomial3::AddTerm(double c, int i, int j, int k)
+{
+  if (c == 0.0)
+  {
+    return;
+  }
+  Monomial m{ c, i, j, k };
+  auto it = std::lower_bound(this->Terms.begin(), this->Terms.end(), m, TermLess);
+  if (it != this->Terms.end() && it->I == i && it->J == j && it->K == k)
+  {
+    it->Coefficient += c;
+    if (it->Coefficient == 0.0)
+    {
+      this->Terms.erase(it);
+    }
+  }
+  else
+  {
+    this->Terms.insert(it, m);
+  }
+  this->Degree = -1;
+  for (const auto& t : this->Terms)
+  {
+    this->Degree = std::max(this->Degree, t.I + t.J + t.K);
+  }
+}
+
+void Polynomial3::Finish()
+{
+  std::sort(this->Terms.begin(), this->Terms.end(), TermLess);
+  std::vector<Monomial> merged;
+  merged.reserve(this->Terms.size());
+  for (const auto& t : this->Terms)
+  {
+    if (!merged.empty() && merged.back().I == t.I && merged.back().J == t.J &&
+      merged.back().K == t.K)
+    {
+      merged.back().Coefficient += t.Coefficient;
+    }
+    else
+    {
+      merged.push_back(t);
+    }
+  }
+  this->Terms.clear();
+  this->Degree = -1;
+  for (const auto& t : merged)
+  {
+    if (t.Coefficient != 0.0)
+    {
+      this->Terms.push_back(t);
+      this->Degree = std::max(this->Degree, t.I + t.J + t.K);
+    }
+  }
+}
+
+double Polynomial3::GetCoefficient(int i, int j, int k) const
+{
+  Monomial m{ 0.0, i, j, k };
+  auto it = std::lower_bound(this->Terms.begin(), this->Terms.end(), m, TermLess);
+  if (it != this->Terms.end() && it->I == i && it->J == j && it->K == k)
+  {
+    return it->Coefficient;
+  }
+  return 0.0;
+}
+
+int Polynomial3::GetAxisDegree(int axis) const
+{
+  int d = 0;
+  for (const auto& t : this->Terms)
+  {
+    d = std::max(d, axis == 0 ? t.I : (axis == 1 ? t.J : t.K));
+  }
+  return d;
+}
+
+bool Polynomial3::IsFinite() const
+{
+  for (const auto& t : this->Terms)
+  {
+    if (!std::isfinite(t.Coefficient))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+Polynomial3 Polynomial3::operator+(const Polynomial3& o) const
+{
+  Polynomial3 r;
+  r.Terms = this->Terms;
+  r.Terms.insert(r.Terms.end(), o.Terms.begin(), o.Terms.end());
+  r.Finish();
+  return r;
+}
+
+Polynomial3 Polynomial3::operator-() const
+{
+  return this->Scaled(-1.0);
+}
+
+Polynomial3 Polynomial3::operator-(const Polynomial3& o) const
+{
+  return *this + (-o);
+}
+
+Polynomial3 Polynomial3::operator*(const Polynomial3& o) const
+{
+  Polynomial3 r;
+  r.Terms.reserve(this->Terms.size() * o.Terms.size());
+  for (const auto& a : this->Terms)
+  {
+    for (const auto& b : o.Terms)
+    {
+      r.Terms.push_back({ a.Coefficient * b.Coefficient, a.I + b.I, a.J + b.J, a.K + b.K });
+    }
+  }
+  r.Finish();
+  return r;
+}
+
+Polynomial3 Polynomial3::Scaled(double s) const
+{
+  Polynomial3 r = *this;
+  for (auto& t : r.Terms)
+  {
+    t.Coefficient *= s;
+  }
+  r.Finish();
+  return r;
+}
+
+Polynomial3 Polynomial3::Pow(int n) const
+{
+  Polynomial3 result = Constant(1.0);
+  Polynomial3 base = *this;
+  while (n > 0)
+  {
+    if (n & 1)
+    {
+      result = result * base;
+    }
+    n >>= 1;
+    if (n > 0)
+    {
+      base = base * base;
+    }
+  }
+  return result;
+}
+
+double Polynomial3::Evaluate(const double p[3]) const
+{
+  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  const int n = std::max(this->Degree, 0);
+  Powers(p[0], n, px);
+  Powers(p[1], n, py);
+  Powers(p[2], n, pz);
+  double v = 0.0;
+  for (const auto& t : this->Terms)
+  {
+    v += t.Coefficient * px[t.I] * py[t.J] * pz[t.K];
+  }
+  return v;
+}
+
+double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
+{
+  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  const int n = std::max(this->Degree, 0);
+  Powers(p[0], n, px);
+  Powers(p[1], n, py);
+  Powers(p[2], n, pz);
+  double v = 0.0;
+  g[0] = g[1] = g[2] = 0.0;
+  for (const auto& t : this->Terms)
+  {
+    const double c = t.Coefficient;
+    v += c * px[t.I] * py[t.J] * pz[t.K];
+    if (t.I > 0)
+    {
+      g[0] += c * t.I * px[t.I - 1] * py[t.J] * pz[t.K];
+    }
+    if (t.J > 0)
+    {
+      g[1] += c * t.J * px[t.I] * py[t.J - 1] * pz[t.K];
+    }
+    if (t.K > 0)
+    {
+      g[2] += c * t.K * px[t.I] * py[t.J] * pz[t.K - 1];
+    }
+  }
+  return v;
+}
+
+std::vector<double> Polynomial3::RestrictToLine(const double o[3], const double d[3]) const
+{
+  // powers[a][n] = (o_a + t·d_a)^n as a univariate polynomial.
+  std::vector<std::vector<double>> powers[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->GetAxisDegree(a);
+    powers[a].resize(n + 1);
+    powers[a][0] = { 1.0 };
+    for (int k = 1; k <= n; ++k)
+    {
+      powers[a][k] = Mul1(powers[a][k - 1], { o[a], d[a] });
+    }
+  }
+  std::vector<double> r(std::max(this->Degree, 0) + 1, 0.0);
+  for (const auto& t : this->Terms)
+  {
+    const std::vector<double> c = Mul1(Mul1(powers[0][t.I], powers[1][t.J]), powers[2][t.K]);
+    for (size_t k = 0; k < c.size(); ++k)
+    {
+      r[k] += t.Coefficient * c[k];
+    }
+  }
+  return r;
+}
+
+Polynomial3 Polynomial3::Compose(const double A[3][3], const double b[3]) const
+{
+  Polynomial3 q[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    q[a] = Constant(b[a]) + Variable(0).Scaled(A[a][0]) + Variable(1).Scaled(A[a][1]) +
+      Variable(2).Scaled(A[a][2]);
+  }
+  std::vector<Polynomial3> powers[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->GetAxisDegree(a);
+    powers[a].resize(n + 1);
+    powers[a][0] = Constant(1.0);
+    for (int k = 1; k <= n; ++k)
+    {
+      powers[a][k] = powers[a][k - 1] * q[a];
+    }
+  }
+  Polynomial3 r;
+  for (const auto& t : this->Terms)
+  {
+    r = r + (powers[0][t.I] * powers[1][t.J] * powers[2][t.K]).Scaled(t.Coefficient);
+  }
+  return r;
+}
+
+std::string Polynomial3::ToString() const
+{
+  if (this->Terms.empty())
+  {
+    return "0";
+  }
+  std::string s;
+  char buf[64];
+  // Highest degree first reads naturally.
+  for (auto it = this->Terms.rbegin(); it != this->Terms.rend(); ++it)
+  {
+    std::snprintf(buf, sizeof(buf), "%.17g", std::fabs(it->Coefficient));
+    if (!s.empty())
+    {
+      s += it->Coefficient < 0 ? " - " : " + ";
+    }
+    else if (it->Coefficient < 0)
+    {
+      s += "-";
+    }
+    s += buf;
+    const char* names = "xyz";
+    const int pw[3] = { it->I, it->J, it->K };
+    for (int a = 0; a < 3; ++a)
+    {
+      if (pw[a] == 1)
+      {
+        s += std::string("*") + names[a];
+      }
+      else if (pw[a] > 1)
+      {
+        s += std::string("*") + names[a] + "^" + std::to_string(pw[a]);
+      }
+    }
+  }
+  return s;
+}
+
+} // namespace pisurf

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PiPolynomial.h
+ * @brief sparse trivariate polynomials with exact algebra, evaluation and line restriction
+ *
+ * The primitives of a Pi-surface are polynomials in local coordinates (u, v, w).
+ * A Polynomial3 keeps its monomials sorted and merged, so two polynomials that are
+ * mathematically equal compare equal term by term. No VTK here.
+ */
+#ifndef PiPolynomial_h
+#define PiPolynomial_h
+
+#include <string>
+#include <vector>
+
+namespace pisurf
+{
+
+/// The largest total degree a polynomial may reach: beyond it algebra is refused
+/// (a degree-64 trivariate polynomial already has ~48k monomials).
+constexpr int MaxDegree = 64;
+
+struct Monomial
+{
+  double Coefficient;
+  int I, J, K; // powers of x, y, z (or u, v, w)
+};
+
+class Polynomial3
+{
+public:
+  Polynomial3() = default;
+  static Polynomial3 Constant(double c);
+  /// The variable x (axis 0), y (axis 1) or z (axis 2).
+  static Polynomial3 Variable(int axis);
+
+  const std::vector<Monomial>& GetTerms() const { return this->Terms; }
+  /// Adds c·x^i y^j z^k (merging with an existing term). Cost: O(log terms + terms).
+  void AddTerm(double c, int i, int j, int k);
+  double GetCoefficient(int i, int j, int k) const;
+  int GetDegree() const { return this->Degree; }
+  /// Largest power of each variable separately.
+  int GetAxisDegree(int axis) const;
+  bool IsConstant() const { return this->Degree <= 0; }
+  bool IsZero() const { return this->Terms.empty(); }
+  /// True if every coefficient is finite.
+  bool IsFinite() const;
+
+  Polynomial3 operator+(const Polynomial3& o) const;
+  Polynomial3 operator-(const Polynomial3& o) const;
+  Polynomial3 operator-() const;
+  /// Product; the caller must make sure the degrees add up to at most MaxDegree.
+  Polynomial3 operator*(const Polynomial3& o) const;
+  Polynomial3 Scaled(double s) const;
+  /// this^n by repeated squaring; the caller checks n·degree <= MaxDegree.
+  Polynomial3 Pow(int n) const;
+
+  /// Value at p. Cost: O(degree + terms).
+  double Evaluate(const double p[3]) const;
+  /// Value and gradient at p. Cost: O(degree + 3·terms).
+  double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).
+  std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
+  /// Substitutes the affine map q = A·p + b (q is this polynomial's variable).
+  Polynomial3 Compose(const double A[3][3], const double b[3]) const;
+
+  /// Text in the expression grammar (x y z, ^, *), with round-trip precision.
+  std::string ToString() const;
+
+private:
+  void Finish(); // sorts, merges, drops zeros, recomputes the degree
+  std::vector<Monomial> Terms;
+  int Degree = -1; // -1 for the zero polynomial
+};
+
+/// Horner evaluation of c[0] + c[1]·t + ... .
+inline double EvaluateUnivariate(const double* c, int n, double t)
+{
+  double v = 0.0;
+  for (int i = n - 1; i >= 0; --i)
+  {
+    v = v * t + c[i];
+  }
+  return v;
+}
+
+} // namespace pisurf
+
+#endif

@@ -1,0 +1,333 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiProduct.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace pisurf
+{
+namespace
+{
+constexpr double Big = 0x1p256;
+constexpr double Small = 0x1p-256;
+constexpr int BlockSize = 128;
+
+double Clamp(double v)
+{
+  if (v > DBL_MAX)
+  {
+    return DBL_MAX;
+  }
+  if (v < -DBL_MAX)
+  {
+    return -DBL_MAX;
+  }
+  return v;
+}
+
+// ldexp that saturates at ±DBL_MAX instead of returning ±inf.
+double SafeLdexp(double m, long e)
+{
+  if (m == 0.0)
+  {
+    return 0.0;
+  }
+  int ex;
+  std::frexp(m, &ex);
+  if (e + ex > DBL_MAX_EXP)
+  {
+    return m > 0 ? DBL_MAX : -DBL_MAX;
+  }
+  if (e + ex < DBL_MIN_EXP - DBL_MANT_DIG - 1)
+  {
+    return 0.0;
+  }
+  return std::ldexp(m, static_cast<int>(e));
+}
+
+// Product P and gradient G of the factors with a shared exponent e.
+struct ScaledProduct
+{
+  double P = 1.0;
+  double G[3] = { 0, 0, 0 };
+  long E = 0;
+
+  void Multiply(double f, const double gIn[3])
+  {
+    // Bring a huge or tiny factor (and its gradient) near 1 first, so that the
+    // products below can neither overflow nor underflow.
+    double g[3] = { gIn[0], gIn[1], gIn[2] };
+    const double a = std::max({ std::fabs(f), std::fabs(g[0]), std::fabs(g[1]), std::fabs(g[2]) });
+    if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
+    {
+      int ex;
+      std::frexp(a, &ex);
+      f = std::ldexp(f, -ex);
+      for (double& gk : g)
+      {
+        gk = std::ldexp(gk, -ex);
+      }
+      this->E += ex;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      this->G[k] = this->G[k] * f + this->P * g[k];
+    }
+    this->P *= f;
+    this->Normalize();
+  }
+
+  void Normalize()
+  {
+    const double a = std::max({ std::fabs(this->P), std::fabs(this->G[0]), std::fabs(this->G[1]),
+      std::fabs(this->G[2]) });
+    if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
+    {
+      int ex;
+      std::frexp(a, &ex);
+      this->P = std::ldexp(this->P, -ex);
+      for (double& gk : this->G)
+      {
+        gk = std::ldexp(gk, -ex);
+      }
+      this->E += ex;
+    }
+  }
+};
+}
+
+ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
+  : Factors(std::move(factors))
+  , Blending(blending)
+{
+  this->AllPolynomial = std::all_of(
+    this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
+}
+
+void ProductKernel::Accumulate(double& m, long& e, double f)
+{
+  const double af = std::fabs(f);
+  if ((af > Big || af < Small) && af != 0.0 && std::isfinite(af))
+  {
+    int ex;
+    f = std::frexp(f, &ex);
+    e += ex;
+  }
+  m *= f;
+  const double a = std::fabs(m);
+  if ((a > Big || a < Small) && a != 0.0)
+  {
+    int ex;
+    m = std::frexp(m, &ex);
+    e += ex;
+  }
+}
+
+double ProductKernel::Finish(double m, long e) const
+{
+  if (m == 0.0)
+  {
+    return -this->Blending;
+  }
+  double P = SafeLdexp(m, e);
+  if (P == 0.0)
+  {
+    if (this->Blending != 0.0)
+    {
+      return -this->Blending;
+    }
+    P = std::copysign(std::numeric_limits<double>::denorm_min(), m);
+  }
+  return Clamp(P - this->Blending);
+}
+
+double ProductKernel::Evaluate(const double p[3]) const
+{
+  double m = 1.0;
+  long e = 0;
+  for (const Factor& f : this->Factors)
+  {
+    Accumulate(m, e, f.Evaluate(p));
+  }
+  return this->Finish(m, e);
+}
+
+double ProductKernel::EvaluateWithGradient(const double p[3], double g[3]) const
+{
+  ScaledProduct s;
+  double gi[3];
+  for (const Factor& f : this->Factors)
+  {
+    const double fi = f.EvaluateWithGradient(p, gi);
+    s.Multiply(fi, gi);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    g[k] = SafeLdexp(s.G[k], s.E);
+  }
+  return this->Finish(s.P, s.E);
+}
+
+void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& exponent) const
+{
+  double m = 1.0;
+  long e = 0;
+  for (const Factor& f : this->Factors)
+  {
+    Accumulate(m, e, f.Evaluate(p));
+  }
+  int ex;
+  if (m == 0.0)
+  {
+    mantissa = std::frexp(-this->Blending, &ex);
+    exponent = ex;
+    return;
+  }
+  m = std::frexp(m, &ex);
+  e += ex;
+  // F = m·2^e − r, computed at the larger of the two scales.
+  int er = 0;
+  if (this->Blending != 0.0)
+  {
+    std::frexp(this->Blending, &er);
+  }
+  const long top = std::max<long>(e, er);
+  const double F = std::ldexp(m, static_cast<int>(e - top)) -
+    std::ldexp(this->Blending, static_cast<int>(-top));
+  mantissa = std::frexp(F, &ex);
+  exponent = F == 0.0 ? 0 : top + ex;
+}
+
+int ProductKernel::EvaluateSignAndLog(const double p[3], double& logAbs) const
+{
+  double m;
+  long e;
+  this->EvaluateScaled(p, m, e);
+  if (m == 0.0)
+  {
+    logAbs = -std::numeric_limits<double>::infinity();
+    return 0;
+  }
+  logAbs = std::log(std::fabs(m)) + static_cast<double>(e) * std::log(2.0);
+  return m > 0 ? 1 : -1;
+}
+
+void ProductKernel::EvaluatePoints(const double* xyz, size_t n, double* values) const
+{
+  double m[BlockSize], f[BlockSize];
+  long e[BlockSize];
+  for (size_t start = 0; start < n; start += BlockSize)
+  {
+    const int count = static_cast<int>(std::min<size_t>(BlockSize, n - start));
+    const double* pts = xyz + 3 * start;
+    std::fill(m, m + count, 1.0);
+    std::fill(e, e + count, 0L);
+    for (const Factor& factor : this->Factors)
+    {
+      if (factor.IsPolynomial)
+      {
+        const PolynomialFactor& pf = factor.Polynomial;
+        for (int i = 0; i < count; ++i)
+        {
+          f[i] = pf.Evaluate(pts + 3 * i);
+        }
+      }
+      else
+      {
+        for (int i = 0; i < count; ++i)
+        {
+          f[i] = factor.Generic(pts + 3 * i, nullptr);
+        }
+      }
+      for (int i = 0; i < count; ++i)
+      {
+        Accumulate(m[i], e[i], f[i]);
+      }
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      values[start + i] = this->Finish(m[i], e[i]);
+    }
+  }
+}
+
+void ProductKernel::EvaluateLine(
+  const double origin[3], const double step[3], int n, double* values) const
+{
+  if (n <= 0)
+  {
+    return;
+  }
+  // Restrict about the middle of the row: smaller |t| keeps Horner's rule accurate.
+  const double mid = 0.5 * (n - 1);
+  const double o[3] = { origin[0] + mid * step[0], origin[1] + mid * step[1],
+    origin[2] + mid * step[2] };
+  double m[BlockSize], f[BlockSize];
+  long e[BlockSize];
+  std::vector<std::vector<double>> coefficients(this->Factors.size());
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    if (this->Factors[k].IsPolynomial)
+    {
+      coefficients[k] = this->Factors[k].Polynomial.RestrictToLine(o, step);
+    }
+  }
+  for (int start = 0; start < n; start += BlockSize)
+  {
+    const int count = std::min(BlockSize, n - start);
+    std::fill(m, m + count, 1.0);
+    std::fill(e, e + count, 0L);
+    for (size_t k = 0; k < this->Factors.size(); ++k)
+    {
+      if (this->Factors[k].IsPolynomial)
+      {
+        const double* c = coefficients[k].data();
+        const int nc = static_cast<int>(coefficients[k].size());
+        for (int i = 0; i < count; ++i)
+        {
+          f[i] = EvaluateUnivariate(c, nc, (start + i) - mid);
+        }
+      }
+      else
+      {
+        for (int i = 0; i < count; ++i)
+        {
+          const double t = start + i;
+          const double p[3] = { origin[0] + t * step[0], origin[1] + t * step[1],
+            origin[2] + t * step[2] };
+          f[i] = this->Factors[k].Generic(p, nullptr);
+        }
+      }
+      for (int i = 0; i < count; ++i)
+      {
+        Accumulate(m[i], e[i], f[i]);
+      }
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      values[start + i] = this->Finish(m[i], e[i]);
+    }
+  }
+}
+
+int ProductKernel::NearestFactor(const double p[3]) const
+{
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  double g[3];
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    const double f = this->Factors[k].EvaluateWithGradient(p, g);
+    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    const double d = gn > 0 ? std::fabs(f) / gn : (f == 0 ? 0.0 : std::fabs(f) * 1e300);
+    if (best < 0 || d < bestDistance)
+    {
+      best = static_cast<int>(k);
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+}
