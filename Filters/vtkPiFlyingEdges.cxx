@@ -16,8 +16,10 @@
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
 #include <atomic>
@@ -82,34 +84,147 @@ struct SampleRows
       const vtkIdType j = row % this->Dims[1], k = row / this->Dims[1];
       const double o[3] = { this->Origin[0], this->Origin[1] + j * this->Spacing[1],
         this->Origin[2] + k * this->Spacing[2] };
-      this->Kernel->EvaluateLine(o, step, this->Dims[0], this->Values + row * this->Dims[0]);
+      double* v = this->Values + row * this->Dims[0];
+      this->Kernel->EvaluateLine(o, step, this->Dims[0], v);
+      // Compress to sign(F)·ln(1 + |F|): same signs and zero set, but finite differences
+      // between neighbours, so interpolated vertices stay strictly inside their edges.
+      for (int i = 0; i < this->Dims[0]; ++i)
+      {
+        v[i] = std::copysign(std::log1p(std::fabs(v[i])), v[i]);
+      }
     }
   }
 };
 
-// Exact normals and the nearest factor at each vertex.
+// Moves each vertex onto F = 0 (optional), then takes the exact normal and the
+// nearest factor there.
+//
+// Flying edges puts every vertex on a grid edge whose two samples have opposite signs;
+// the sign of F is exact (overflow-safe), so the edge brackets a root. The vertex is
+// moved to that root by the Illinois variant of regula falsi on the overflow-free
+// first-order distance F/|∇F| (bisection where that is infinite), which converges even
+// where F varies over thousands of orders of magnitude along the edge.
 struct VertexAttributes
 {
   const pisurf::ProductKernel* Kernel;
-  vtkPoints* Points;
+  vtkPoints* IndexPoints; // flying edges' vertices, in grid index coordinates
+  vtkPoints* Points;      // the output vertices, in world coordinates (double)
   vtkFloatArray* Normals;
   vtkIntArray* Factor;
+  bool Project;
+  const double* Origin;
+  const double* Spacing;
+  double Tolerance; // stop when the bracket is shorter than this
+
+  // The grid edge [a, b] (world coordinates) of a vertex given in index coordinates:
+  // flying edges ran on a unit grid, where on-grid coordinates are exact integers even
+  // in float. False if the vertex is a grid point.
+  bool FindEdge(const double t[3], double a[3], double b[3]) const
+  {
+    int offAxis = -1;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double lo = std::floor(t[k]);
+      a[k] = this->Origin[k] + lo * this->Spacing[k];
+      b[k] = a[k];
+      if (t[k] != lo)
+      {
+        if (offAxis >= 0)
+        {
+          return false;
+        }
+        offAxis = k;
+        b[k] = this->Origin[k] + (lo + 1) * this->Spacing[k];
+      }
+    }
+    return offAxis >= 0;
+  }
+
+  // Moves p (world) to the root on the edge of the index-space vertex t.
+  void Refine(const double t[3], double p[3]) const
+  {
+    double a[3], b[3], n[3];
+    if (!this->FindEdge(t, a, b))
+    {
+      return;
+    }
+    double va = this->Kernel->EvaluateDistance(a, n);
+    double vb = this->Kernel->EvaluateDistance(b, n);
+    if (!(va < 0 && vb > 0) && !(va > 0 && vb < 0))
+    {
+      return; // no bracket (a sample exactly zero): keep the interpolated vertex
+    }
+    double s0 = 0, s1 = 1;
+    int side = 0;
+    const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
+    double q[3];
+    for (int it = 0; it < 100 && (s1 - s0) * length > this->Tolerance; ++it)
+    {
+      double s = 0.5 * (s0 + s1);
+      if (std::isfinite(va) && std::isfinite(vb))
+      {
+        const double secant = s1 - vb * (s1 - s0) / (vb - va);
+        if (secant > s0 && secant < s1)
+        {
+          s = secant;
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        q[k] = a[k] + s * (b[k] - a[k]);
+      }
+      const double v = this->Kernel->EvaluateDistance(q, n);
+      if (v == 0)
+      {
+        s0 = s1 = s;
+        break;
+      }
+      if ((v < 0) == (va < 0))
+      {
+        s0 = s;
+        va = v;
+        if (side == -1)
+        {
+          vb *= 0.5; // Illinois: the stale end is halved
+        }
+        side = -1;
+      }
+      else
+      {
+        s1 = s;
+        vb = v;
+        if (side == 1)
+        {
+          va *= 0.5;
+        }
+        side = 1;
+      }
+    }
+    const double s = 0.5 * (s0 + s1);
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = a[k] + s * (b[k] - a[k]);
+    }
+  }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    double p[3], g[3];
+    double t[3], p[3], n[3];
     for (vtkIdType i = begin; i < end; ++i)
     {
-      this->Points->GetPoint(i, p);
-      this->Kernel->EvaluateWithGradient(p, g);
-      const double n = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-      float nf[3] = { 0.f, 0.f, 0.f };
-      if (n > 0 && std::isfinite(n))
+      this->IndexPoints->GetPoint(i, t);
+      for (int k = 0; k < 3; ++k)
       {
-        nf[0] = static_cast<float>(g[0] / n);
-        nf[1] = static_cast<float>(g[1] / n);
-        nf[2] = static_cast<float>(g[2] / n);
+        p[k] = this->Origin[k] + t[k] * this->Spacing[k];
       }
+      if (this->Project)
+      {
+        this->Refine(t, p);
+      }
+      this->Points->SetPoint(i, p);
+      this->Kernel->EvaluateDistance(p, n);
+      const float nf[3] = { static_cast<float>(n[0]), static_cast<float>(n[1]),
+        static_cast<float>(n[2]) };
       this->Normals->SetTypedTuple(i, nf);
       this->Factor->SetValue(i, this->Kernel->NearestFactor(p));
     }
@@ -214,10 +329,10 @@ int vtkPiFlyingEdges::RequestData(
   const double origin[3] = { bounds[0], bounds[2], bounds[4] };
 
   // PASS 1: sample F row by row.
+  // Flying edges runs in index space (origin 0, spacing 1): its float vertices then
+  // have exact integer coordinates on the axes they do not interpolate along.
   vtkNew<vtkImageData> image;
   image->SetDimensions(dims);
-  image->SetOrigin(origin);
-  image->SetSpacing(spacing);
   vtkNew<vtkDoubleArray> values;
   values->SetName("F");
   values->SetNumberOfTuples(vtkIdType(dims[0]) * dims[1] * dims[2]);
@@ -259,7 +374,17 @@ int vtkPiFlyingEdges::RequestData(
   factor->SetNumberOfTuples(n);
   if (n > 0)
   {
-    VertexAttributes attributes{ kernel.get(), output->GetPoints(), normals, factor };
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(n);
+    vtkSmartPointer<vtkPoints> indexPoints = output->GetPoints();
+    output->SetPoints(points);
+    const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+      (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    VertexAttributes attributes{ kernel.get(), indexPoints, points, normals, factor,
+      this->ProjectVertices,
+      origin, spacing, 1e-13 * size };
     vtkSMPTools::For(0, n, attributes);
   }
   output->GetPointData()->SetNormals(normals);
@@ -268,6 +393,12 @@ int vtkPiFlyingEdges::RequestData(
   pisurf::Model model;
   if (this->PiSurface->GetCoreModel(model))
   {
+    if (!model.HasBounds)
+    {
+      // Downstream users rebuild the function and the region it was meshed in.
+      model.HasBounds = true;
+      std::copy(bounds, bounds + 6, model.Bounds);
+    }
     vtkNew<vtkStringArray> json;
     json->SetName("PiSurfaceModel");
     json->InsertNextValue(pisurf::WriteModel(model));
@@ -294,4 +425,5 @@ void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleDimensions: (" << this->SampleDimensions[0] << ", "
      << this->SampleDimensions[1] << ", " << this->SampleDimensions[2] << ")\n";
   os << indent << "MaximumNumberOfSamples: " << this->MaximumNumberOfSamples << "\n";
+  os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
 }

@@ -10,7 +10,16 @@
  * Sampling pays no virtual call per point per factor: each grid row is a line, every
  * polynomial factor is restricted to it once (an exact univariate polynomial) and
  * evaluated by Horner's rule; rows are distributed over threads with vtkSMPTools. The
- * product is accumulated overflow-safely (see vtkPiSurface).
+ * product is accumulated overflow-safely (see vtkPiSurface). The grid holds
+ * sign(F)·ln(1 + |F|): the same signs and zero set as F, but always finite and with
+ * finite differences between neighbours, so flying edges' interpolation never collapses
+ * a vertex onto a grid point, even for products far beyond the double range.
+ *
+ * With ProjectVertices (default on) each vertex is then moved to the exact root of F on
+ * its grid edge: the edge's samples have opposite signs (the sign of F is exact), so
+ * the root is bracketed, and regula falsi (Illinois) on the overflow-free first-order
+ * distance F/|∇F|, with bisection as a fallback, finds it to 1e-13 of the model size,
+ * even where F spans thousands of orders of magnitude along the edge.
  *
  * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F)
  * and `Factor` (index of the primitive whose zero set is nearest, so each primitive's
@@ -23,8 +32,8 @@
  * exact control. Grids above `MaximumNumberOfSamples` (default 2^28 samples, 2 GiB of
  * doubles) are refused with the memory they would need.
  *
- * @warning Only a first version of the mesher: vertices are linear interpolations
- * between grid samples (not yet projected onto F = 0) and interior sheets are kept.
+ * @warning Interior sheets (closed shells inside the solid where primitives overlap)
+ * are kept: there is no outer-envelope extraction yet.
  *
  * @sa vtkPiSurface vtkFlyingEdges3D vtkSampleFunction
  */
@@ -73,6 +82,15 @@ public:
   vtkGetMacro(MaximumNumberOfSamples, vtkIdType);
   ///@}
 
+  ///@{
+  /// Move each vertex to the root of F on its grid edge (default on), to 1e-13 of the
+  /// model size; off, vertices are flying edges' linear interpolation of the
+  /// compressed samples sign(F)·ln(1 + |F|).
+  vtkSetMacro(ProjectVertices, bool);
+  vtkGetMacro(ProjectVertices, bool);
+  vtkBooleanMacro(ProjectVertices, bool);
+  ///@}
+
   /// The grid the next execution uses: dims and spacing from bounds and settings.
   /// False (with an error) for invalid settings.
   bool ComputeGrid(const double bounds[6], int dims[3], double spacing[3]);
@@ -91,6 +109,7 @@ protected:
   int Resolution = 128;
   int SampleDimensions[3] = { 0, 0, 0 };
   vtkIdType MaximumNumberOfSamples = vtkIdType(1) << 28;
+  bool ProjectVertices = true;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

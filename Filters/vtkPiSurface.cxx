@@ -696,6 +696,18 @@ std::string vtkPiSurface::GetModelJSON()
     vtkErrorMacro(<< "Cannot write the model: " << this->Internals->Error);
     return std::string();
   }
+  // A model file with an unbounded primitive must say where to look.
+  auto kernel = this->GetKernel();
+  for (size_t i = 0; kernel && !model.HasBounds && i < kernel->GetNumberOfFactors(); ++i)
+  {
+    if (!kernel->GetFactor(i).Polynomial.Bounded)
+    {
+      this->Internals->Error = "factor " + std::to_string(i) +
+        " is unbounded: set the model bounds (SetModelBounds) before writing the model";
+      vtkErrorMacro(<< "Cannot write the model: " << this->Internals->Error);
+      return std::string();
+    }
+  }
   return pisurf::WriteModel(model);
 }
 

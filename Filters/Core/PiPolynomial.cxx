@@ -25,19 +25,6 @@ inline void Powers(double x, int n, double* out)
   }
 }
 
-// Univariate product, ascending coefficients.
-std::vector<double> Mul1(const std::vector<double>& a, const std::vector<double>& b)
-{
-  std::vector<double> r(a.size() + b.size() - 1, 0.0);
-  for (size_t i = 0; i < a.size(); ++i)
-  {
-    for (size_t j = 0; j < b.size(); ++j)
-    {
-      r[i + j] += a[i] * b[j];
-    }
-  }
-  return r;
-}
 }
 
 Polynomial3 Polynomial3::Constant(double c)
@@ -253,28 +240,58 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
 
 std::vector<double> Polynomial3::RestrictToLine(const double o[3], const double d[3]) const
 {
-  // powers[a][n] = (o_a + t·d_a)^n as a univariate polynomial.
-  std::vector<std::vector<double>> powers[3];
+  std::vector<double> r(std::max(this->Degree, 0) + 1, 0.0);
+  this->RestrictToLine(o, d, r.data());
+  return r;
+}
+
+void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* out) const
+{
+  const int degree = std::max(this->Degree, 0);
+  const int n = degree + 1;
+  // pw[a][k][m]: coefficient of t^m in (o_a + t·d_a)^k, from the binomial theorem.
+  thread_local std::vector<double> scratch;
+  scratch.assign(static_cast<size_t>(3) * n * n, 0.0);
+  auto pw = [&](int a, int k, int m) -> double& { return scratch[(a * n + k) * n + m]; };
   for (int a = 0; a < 3; ++a)
   {
-    const int n = this->GetAxisDegree(a);
-    powers[a].resize(n + 1);
-    powers[a][0] = { 1.0 };
-    for (int k = 1; k <= n; ++k)
+    const int na = this->GetAxisDegree(a);
+    pw(a, 0, 0) = 1.0;
+    for (int k = 1; k <= na; ++k)
     {
-      powers[a][k] = Mul1(powers[a][k - 1], { o[a], d[a] });
+      for (int m = 0; m <= k; ++m)
+      {
+        pw(a, k, m) = o[a] * (m < k ? pw(a, k - 1, m) : 0.0) + (m > 0 ? d[a] * pw(a, k - 1, m - 1) : 0.0);
+      }
     }
   }
-  std::vector<double> r(std::max(this->Degree, 0) + 1, 0.0);
+  std::fill(out, out + n, 0.0);
+  double xy[MaxDegree + 1];
   for (const auto& t : this->Terms)
   {
-    const std::vector<double> c = Mul1(Mul1(powers[0][t.I], powers[1][t.J]), powers[2][t.K]);
-    for (size_t k = 0; k < c.size(); ++k)
+    // (x part)·(y part), then ·(z part), accumulated into out.
+    std::fill(xy, xy + t.I + t.J + 1, 0.0);
+    for (int i = 0; i <= t.I; ++i)
     {
-      r[k] += t.Coefficient * c[k];
+      const double ci = pw(0, t.I, i);
+      if (ci == 0.0)
+        continue;
+      for (int j = 0; j <= t.J; ++j)
+      {
+        xy[i + j] += ci * pw(1, t.J, j);
+      }
+    }
+    for (int m = 0; m <= t.I + t.J; ++m)
+    {
+      const double cm = t.Coefficient * xy[m];
+      if (cm == 0.0)
+        continue;
+      for (int k = 0; k <= t.K; ++k)
+      {
+        out[m + k] += cm * pw(2, t.K, k);
+      }
     }
   }
-  return r;
 }
 
 Polynomial3 Polynomial3::Compose(const double A[3][3], const double b[3]) const

@@ -61,6 +61,8 @@ public:
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
+  /// The same into out[0..degree] without allocating (hot path of grid sampling).
+  void RestrictToLine(const double o[3], const double d[3], double* out) const;
   /// Substitutes the affine map q = A·p + b (q is this polynomial's variable).
   Polynomial3 Compose(const double A[3][3], const double b[3]) const;
 

@@ -139,13 +139,20 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
 
 std::vector<double> PolynomialFactor::RestrictToLine(const double o[3], const double d[3]) const
 {
+  std::vector<double> r(std::max(this->Poly.GetDegree(), 0) + 1);
+  this->RestrictToLine(o, d, r.data());
+  return r;
+}
+
+void PolynomialFactor::RestrictToLine(const double o[3], const double d[3], double* out) const
+{
   double lo[3], ld[3];
   this->ToLocal(o, lo);
   for (int i = 0; i < 3; ++i)
   {
     ld[i] = this->A[i][0] * d[0] + this->A[i][1] * d[1] + this->A[i][2] * d[2];
   }
-  return this->Poly.RestrictToLine(lo, ld);
+  this->Poly.RestrictToLine(lo, ld, out);
 }
 
 Polynomial3 PolynomialFactor::WorldPolynomial() const

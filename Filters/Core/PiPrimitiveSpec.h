@@ -109,6 +109,8 @@ struct PolynomialFactor
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// Coefficients of t -> f(o + t·d).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
+  /// The same into out[0..degree] without allocating.
+  void RestrictToLine(const double o[3], const double d[3], double* out) const;
   /// The same polynomial expanded in world coordinates (for export).
   Polynomial3 WorldPolynomial() const;
 };

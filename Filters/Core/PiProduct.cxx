@@ -170,6 +170,30 @@ double ProductKernel::EvaluateWithGradient(const double p[3], double g[3]) const
   return this->Finish(s.P, s.E);
 }
 
+double ProductKernel::EvaluateDistance(const double p[3], double normal[3]) const
+{
+  ScaledProduct s;
+  double gi[3];
+  for (const Factor& f : this->Factors)
+  {
+    const double fi = f.EvaluateWithGradient(p, gi);
+    s.Multiply(fi, gi);
+  }
+  // F·2^-E = P − r·2^-E and ∇F·2^-E = G: the common scale cancels in the ratio.
+  const double Fs = s.P - (this->Blending == 0.0 ? 0.0 : SafeLdexp(this->Blending, -s.E));
+  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
+  if (!(gn > 0.0) || !std::isfinite(gn))
+  {
+    normal[0] = normal[1] = normal[2] = 0.0;
+    return Fs == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), Fs);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    normal[k] = s.G[k] / gn;
+  }
+  return Fs / gn;
+}
+
 void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& exponent) const
 {
   double m = 1.0;
@@ -266,12 +290,22 @@ void ProductKernel::EvaluateLine(
     origin[2] + mid * step[2] };
   double m[BlockSize], f[BlockSize];
   long e[BlockSize];
-  std::vector<std::vector<double>> coefficients(this->Factors.size());
+  // All factors' restrictions in one buffer: offsets[k] .. offsets[k + 1].
+  thread_local std::vector<double> coefficients;
+  thread_local std::vector<size_t> offsets;
+  offsets.assign(this->Factors.size() + 1, 0);
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    const Factor& f = this->Factors[k];
+    offsets[k + 1] = offsets[k] +
+      (f.IsPolynomial ? static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1 : 0);
+  }
+  coefficients.resize(offsets.back());
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     if (this->Factors[k].IsPolynomial)
     {
-      coefficients[k] = this->Factors[k].Polynomial.RestrictToLine(o, step);
+      this->Factors[k].Polynomial.RestrictToLine(o, step, coefficients.data() + offsets[k]);
     }
   }
   for (int start = 0; start < n; start += BlockSize)
@@ -283,8 +317,8 @@ void ProductKernel::EvaluateLine(
     {
       if (this->Factors[k].IsPolynomial)
       {
-        const double* c = coefficients[k].data();
-        const int nc = static_cast<int>(coefficients[k].size());
+        const double* c = coefficients.data() + offsets[k];
+        const int nc = static_cast<int>(offsets[k + 1] - offsets[k]);
         for (int i = 0; i < count; ++i)
         {
           f[i] = EvaluateUnivariate(c, nc, (start + i) - mid);

@@ -67,6 +67,10 @@ public:
   double Evaluate(const double p[3]) const;
   /// F(p) and ∇F(p) (exact product rule), clamped as above.
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// The first-order signed distance F/|∇F| to the surface and the unit normal
+  /// ∇F/|∇F|, computed from the scaled product so that neither overflows however large
+  /// the product is. Where ∇F = 0 the normal is 0 and the distance ±inf (or 0 on F = 0).
+  double EvaluateDistance(const double p[3], double normal[3]) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.

@@ -1,0 +1,826 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of pisurf::ProductKernel (PiProduct.h): F = Π f_i − r and its gradient.
+#include "PiProduct.h"
+#include "PiTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace pisurf;
+using namespace pisurf_test;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+Factor FromSpec(const PrimitiveSpec& s, const ParameterMap& params = {})
+{
+  Factor f;
+  f.IsPolynomial = true;
+  std::string error;
+  EXPECT_TRUE(BuildFactor(s, params, f.Polynomial, error)) << error;
+  return f;
+}
+
+Factor Sphere(const double c[3], double radius)
+{
+  PrimitiveSpec s;
+  s.Type = PrimitiveType::Sphere;
+  std::copy(c, c + 3, s.Center);
+  s.Radius = radius;
+  return FromSpec(s);
+}
+
+Factor Plane(double nx, double ny, double nz, double offset = 0.0)
+{
+  PrimitiveSpec s;
+  s.Type = PrimitiveType::Plane;
+  s.Normal[0] = nx;
+  s.Normal[1] = ny;
+  s.Normal[2] = nz;
+  const double n = std::hypot(nx, ny, nz);
+  for (int i = 0; i < 3; ++i)
+    s.Center[i] = offset * s.Normal[i] / n;
+  return FromSpec(s);
+}
+
+Factor Generic(GenericFunction fn)
+{
+  Factor f;
+  f.IsPolynomial = false;
+  f.Generic = std::move(fn);
+  return f;
+}
+
+/// A constant generic factor with a constant gradient.
+Factor ConstantFactor(double value, double gradient = 0.0)
+{
+  return Generic([value, gradient](const double*, double* g) {
+    if (g)
+    {
+      g[0] = gradient;
+      g[1] = -gradient;
+      g[2] = 0.5 * gradient;
+    }
+    return value;
+  });
+}
+
+/// sin(x) + y·z − 0.3, with its exact gradient.
+Factor Wave()
+{
+  return Generic([](const double* p, double* g) {
+    if (g)
+    {
+      g[0] = std::cos(p[0]);
+      g[1] = p[2];
+      g[2] = p[1];
+    }
+    return std::sin(p[0]) + p[1] * p[2] - 0.3;
+  });
+}
+
+/// A random primitive of any type, randomly placed.
+Factor RandomPrimitive(Random& rng)
+{
+  PrimitiveSpec s;
+  s.Type = static_cast<PrimitiveType>(rng.Integer(0, 11));
+  s.Radius = rng.Uniform(0.5, 1.5);
+  for (double& r : s.Radii)
+    r = rng.Uniform(0.5, 1.5);
+  s.MajorRadius = rng.Uniform(1.0, 1.5);
+  s.MinorRadius = rng.Uniform(0.2, 0.5);
+  s.Exponent = 4;
+  s.Angle = rng.Uniform(10, 70);
+  s.Expression = "x*y - z^2 + 0.25*x^3 - 1";
+  for (int i = 0; i < 3; ++i)
+  {
+    s.Normal[i] = rng.Uniform(-1, 1);
+    s.Center[i] = rng.Uniform(-0.5, 0.5);
+    s.RotationAxis[i] = rng.Uniform(-1, 1);
+  }
+  s.Orient = Orientation::Rotation;
+  s.RotationAngle = rng.Uniform(-180, 180);
+  s.Scale = rng.Uniform(0.5, 2.0);
+  return FromSpec(s);
+}
+
+/// Σ|c|·(|q|+1)^pow: the rounding scale of a polynomial factor's value at p.
+double FactorScale(const Factor& f, const double p[3])
+{
+  if (!f.IsPolynomial)
+  {
+    return 2.0 + std::fabs(p[1] * p[2]);
+  }
+  double q[3];
+  f.Polynomial.ToLocal(p, q);
+  double v = 0.0;
+  for (const auto& t : f.Polynomial.Poly.GetTerms())
+  {
+    v += std::fabs(t.Coefficient) * std::pow(std::fabs(q[0]) + 1, t.I) *
+      std::pow(std::fabs(q[1]) + 1, t.J) * std::pow(std::fabs(q[2]) + 1, t.K);
+  }
+  return v;
+}
+
+struct Direct
+{
+  double F;
+  double G[3];
+  double ValueTolerance;    // rounding scale of F
+  double GradientTolerance; // rounding scale of ∇F
+};
+
+/// F and ∇F straight from the definitions, with the scale of their rounding errors.
+Direct DirectEvaluation(const std::vector<Factor>& factors, double r, const double p[3])
+{
+  const size_t n = factors.size();
+  std::vector<double> f(n), scale(n), gn(n);
+  std::vector<Point> g(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    f[i] = factors[i].EvaluateWithGradient(p, g[i].data());
+    scale[i] = FactorScale(factors[i], p);
+    gn[i] = std::fabs(g[i][0]) + std::fabs(g[i][1]) + std::fabs(g[i][2]) + scale[i];
+  }
+  Direct d{};
+  double P = 1.0, absP = 1.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    P *= f[i];
+    absP *= std::max(std::fabs(f[i]), scale[i]);
+  }
+  d.F = P - r;
+  d.ValueTolerance = 1e-13 * (absP + std::fabs(r));
+  double gscale = 0.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    double others = 1.0, absOthers = 1.0;
+    for (size_t j = 0; j < n; ++j)
+    {
+      if (j != i)
+      {
+        others *= f[j];
+        absOthers *= std::max(std::fabs(f[j]), scale[j]);
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+      d.G[k] += g[i][k] * others;
+    gscale += gn[i] * absOthers;
+  }
+  d.GradientTolerance = 1e-13 * gscale;
+  return d;
+}
+
+/// Σ_i rounding-condition of each factor: how much relative error the value may carry.
+double Conditioning(const std::vector<Factor>& factors, const double p[3])
+{
+  double c = 0.0;
+  for (const Factor& f : factors)
+  {
+    const double v = std::fabs(f.Evaluate(p));
+    c += FactorScale(f, p) / std::max(v, 1e-300);
+  }
+  return c;
+}
+}
+
+TEST(ProductKernel, Accessors)
+{
+  const double c[3] = { 0, 0, 0 };
+  ProductKernel k({ Sphere(c, 1), Plane(0, 0, 1) }, 0.25);
+  EXPECT_EQ(k.GetNumberOfFactors(), 2u);
+  EXPECT_EQ(k.GetBlending(), 0.25);
+  EXPECT_TRUE(k.IsPolynomial());
+  EXPECT_TRUE(k.GetFactor(1).IsPolynomial);
+  ProductKernel mixed({ Sphere(c, 1), Wave() }, 0.0);
+  EXPECT_FALSE(mixed.IsPolynomial());
+  EXPECT_FALSE(mixed.GetFactor(1).IsPolynomial);
+}
+
+TEST(ProductKernel, NoFactorsIsTheEmptyProduct)
+{
+  ProductKernel k({}, 0.25);
+  const double p[3] = { 1, 2, 3 };
+  EXPECT_DOUBLE_EQ(k.Evaluate(p), 0.75);
+  double g[3] = { 9, 9, 9 };
+  EXPECT_DOUBLE_EQ(k.EvaluateWithGradient(p, g), 0.75);
+  EXPECT_EQ(g[0], 0.0);
+  EXPECT_EQ(g[1], 0.0);
+  EXPECT_EQ(g[2], 0.0);
+  EXPECT_EQ(k.NearestFactor(p), -1);
+}
+
+TEST(ProductKernel, ValueAndGradientMatchTheDefinition)
+{
+  Random rng(41);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const int n = 2 + trial % 4; // 2..5 factors
+    std::vector<Factor> factors;
+    for (int i = 0; i < n; ++i)
+    {
+      factors.push_back(trial % 5 == 4 && i == 0 ? Wave() : RandomPrimitive(rng));
+    }
+    const double r = trial % 3 == 0 ? 0.0 : rng.Uniform(-0.5, 0.5);
+    const ProductKernel k(factors, r);
+    for (int m = 0; m < 10; ++m)
+    {
+      const Point p = rng.InBox(-2, 2);
+      const Direct d = DirectEvaluation(factors, r, p.data());
+      EXPECT_NEAR(k.Evaluate(p.data()), d.F, d.ValueTolerance) << n << " factors";
+      double g[3];
+      EXPECT_NEAR(k.EvaluateWithGradient(p.data(), g), d.F, d.ValueTolerance);
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(g[c], d.G[c], d.GradientTolerance) << n << " factors, component " << c;
+      }
+      // And against finite differences of F itself.
+      const Point fd = FiniteDifferenceGradient(
+        [&](const double* x) { return k.Evaluate(x); }, p.data(), 1e-6);
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(g[c], fd[c], 1e-5 * (1.0 + d.GradientTolerance * 1e13)) << "component " << c;
+      }
+    }
+  }
+}
+
+TEST(ProductKernel, GradientWithOneZeroFactor)
+{
+  // f1 = z is exactly 0 on z = 0, so ∇F = ∇f1 · f2 · f3 there (not 0, not NaN).
+  const double c[3] = { 0.5, 0, 0.25 };
+  std::vector<Factor> factors = { Plane(0, 0, 1), Sphere(c, 1.0), Wave() };
+  const ProductKernel k(factors, 0.125);
+  Random rng(42);
+  for (int n = 0; n < 20; ++n)
+  {
+    const double p[3] = { rng.Uniform(-2, 2), rng.Uniform(-2, 2), 0.0 };
+    double g[3];
+    const double F = k.EvaluateWithGradient(p, g);
+    EXPECT_EQ(F, -0.125);
+    EXPECT_EQ(k.Evaluate(p), -0.125);
+    const double others = factors[1].Evaluate(p) * factors[2].Evaluate(p);
+    EXPECT_NEAR(g[0], 0.0, 1e-300);
+    EXPECT_NEAR(g[1], 0.0, 1e-300);
+    EXPECT_TRUE(Near(g[2], others, 1e-14));
+    EXPECT_NE(g[2], 0.0);
+  }
+}
+
+TEST(ProductKernel, GradientWithTwoZeroFactorsIsZero)
+{
+  const double c[3] = { 0.5, 0, 0.25 };
+  std::vector<Factor> factors = { Plane(1, 0, 0), Sphere(c, 1.0), Plane(0, 1, 0), Wave() };
+  const ProductKernel k(factors, 0.0);
+  Random rng(43);
+  for (int n = 0; n < 20; ++n)
+  {
+    const double p[3] = { 0.0, 0.0, rng.Uniform(-2, 2) };
+    double g[3] = { 7, 7, 7 };
+    EXPECT_EQ(k.EvaluateWithGradient(p, g), 0.0);
+    EXPECT_EQ(g[0], 0.0);
+    EXPECT_EQ(g[1], 0.0);
+    EXPECT_EQ(g[2], 0.0);
+    EXPECT_EQ(k.Evaluate(p), 0.0);
+  }
+}
+
+TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
+{
+  Random rng(44);
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    std::vector<Factor> factors;
+    const int n = 2 + trial % 4;
+    for (int i = 0; i < n; ++i)
+      factors.push_back(RandomPrimitive(rng));
+    if (trial % 3 == 2)
+      factors.push_back(Wave()); // exercised by both paths too
+    const double r = trial % 2 ? 0.1 : 0.0;
+    const ProductKernel k(factors, r);
+
+    // A grid row of 300 points (more than one block of 128).
+    const int count = 300;
+    const Point origin = rng.InBox(-2, 2);
+    const Point end = rng.InBox(-2, 2);
+    const double step[3] = { (end[0] - origin[0]) / (count - 1), (end[1] - origin[1]) / (count - 1),
+      (end[2] - origin[2]) / (count - 1) };
+    std::vector<double> line(count), points(count), xyz(3 * count);
+    k.EvaluateLine(origin.data(), step, count, line.data());
+    for (int i = 0; i < count; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+        xyz[3 * i + a] = origin[a] + i * step[a];
+    }
+    k.EvaluatePoints(xyz.data(), count, points.data());
+    int wellConditioned = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      const double* p = &xyz[3 * i];
+      const double F = k.Evaluate(p);
+      double P = 1.0;
+      for (const Factor& f : factors)
+        P *= f.Evaluate(p);
+      // Same arithmetic per point: agreement to the last bits.
+      EXPECT_TRUE(Near(points[i], F, 1e-15 * (std::fabs(P) + std::fabs(r))))
+        << "EvaluatePoints at " << i;
+      // Horner on the restricted polynomials rounds differently: ~1e-12 relative to
+      // the product, more where a factor is nearly cancelling.
+      const double cond = Conditioning(factors, p);
+      const double tol = std::max(1e-12, 1e-14 * cond) * std::fabs(P) + 1e-15 * std::fabs(r);
+      EXPECT_NEAR(line[i], F, tol) << "EvaluateLine at " << i << ", conditioning " << cond;
+      if (1e-14 * cond <= 1e-12)
+        ++wellConditioned;
+    }
+    EXPECT_GT(wellConditioned, count / 2) << "most points are compared at 1e-12 relative";
+  }
+  // n = 0 and n = 1 rows.
+  const ProductKernel k({ Wave() }, 0.0);
+  const double o[3] = { 0.3, 0.2, 0.1 }, s[3] = { 1, 1, 1 };
+  double v = 12345.0;
+  k.EvaluateLine(o, s, 0, &v);
+  EXPECT_EQ(v, 12345.0);
+  k.EvaluateLine(o, s, 1, &v);
+  EXPECT_DOUBLE_EQ(v, k.Evaluate(o));
+  k.EvaluatePoints(o, 0, &v);
+  EXPECT_DOUBLE_EQ(v, k.Evaluate(o));
+}
+
+TEST(ProductKernel, GenericFactorsMixWithPolynomialOnes)
+{
+  const double c[3] = { 0.2, -0.1, 0.3 };
+  std::vector<Factor> factors = { Sphere(c, 0.8), Wave(), Plane(1, 1, 0, 0.2),
+    Generic([](const double* p, double* g) {
+      // e^x·(y − 1)
+      if (g)
+      {
+        g[0] = std::exp(p[0]) * (p[1] - 1);
+        g[1] = std::exp(p[0]);
+        g[2] = 0.0;
+      }
+      return std::exp(p[0]) * (p[1] - 1);
+    }) };
+  const ProductKernel k(factors, 0.05);
+  Random rng(45);
+  for (int n = 0; n < 50; ++n)
+  {
+    const Point p = rng.InBox(-1.5, 1.5);
+    const double x = p[0], y = p[1], z = p[2];
+    const double f0 = (x - 0.2) * (x - 0.2) + (y + 0.1) * (y + 0.1) + (z - 0.3) * (z - 0.3) - 0.64;
+    const double f1 = std::sin(x) + y * z - 0.3;
+    const double f2 = (x + y) / std::sqrt(2.0) - 0.2;
+    const double f3 = std::exp(x) * (y - 1);
+    const double F = f0 * f1 * f2 * f3 - 0.05;
+    const double scale = 10.0 * (std::fabs(f0) + 1) * (std::fabs(f1) + 1) * (std::fabs(f2) + 1) *
+      (std::fabs(f3) + 1);
+    EXPECT_NEAR(k.Evaluate(p.data()), F, 1e-14 * scale);
+    double g[3];
+    EXPECT_NEAR(k.EvaluateWithGradient(p.data(), g), F, 1e-14 * scale);
+    const double g0[3] = { 2 * (x - 0.2), 2 * (y + 0.1), 2 * (z - 0.3) };
+    const double g1[3] = { std::cos(x), z, y };
+    const double g2[3] = { 1 / std::sqrt(2.0), 1 / std::sqrt(2.0), 0 };
+    const double g3[3] = { f3, std::exp(x), 0 };
+    for (int a = 0; a < 3; ++a)
+    {
+      const double expected =
+        g0[a] * f1 * f2 * f3 + f0 * g1[a] * f2 * f3 + f0 * f1 * g2[a] * f3 + f0 * f1 * f2 * g3[a];
+      EXPECT_NEAR(g[a], expected, 1e-13 * scale * 10) << "component " << a;
+    }
+    double v;
+    k.EvaluatePoints(p.data(), 1, &v);
+    EXPECT_NEAR(v, F, 1e-14 * scale);
+  }
+  std::vector<double> line(200);
+  const double o[3] = { -1, -1, 0.5 }, s[3] = { 0.01, 0.012, -0.003 };
+  k.EvaluateLine(o, s, 200, line.data());
+  for (int i = 0; i < 200; ++i)
+  {
+    const double p[3] = { o[0] + i * s[0], o[1] + i * s[1], o[2] + i * s[2] };
+    EXPECT_NEAR(line[i], k.Evaluate(p), 1e-12 * (std::fabs(k.Evaluate(p)) + 1)) << i;
+  }
+}
+
+TEST(ProductKernel, ScaledAndLogFormsAgreeWithEvaluate)
+{
+  Random rng(46);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < 3; ++i)
+      factors.push_back(RandomPrimitive(rng));
+    const double r = trial % 2 ? 0.3 : 0.0;
+    const ProductKernel k(factors, r);
+    for (int n = 0; n < 20; ++n)
+    {
+      const Point p = rng.InBox(-2, 2);
+      const double F = k.Evaluate(p.data());
+      double m;
+      long e;
+      k.EvaluateScaled(p.data(), m, e);
+      if (F == 0.0)
+      {
+        EXPECT_EQ(m, 0.0);
+        continue;
+      }
+      EXPECT_GE(std::fabs(m), 0.5);
+      EXPECT_LT(std::fabs(m), 1.0);
+      double P = 1.0;
+      for (const Factor& f : factors)
+        P *= f.Evaluate(p.data());
+      EXPECT_NEAR(std::ldexp(m, static_cast<int>(e)), F, 1e-15 * (std::fabs(P) + r));
+      double logAbs;
+      const int sign = k.EvaluateSignAndLog(p.data(), logAbs);
+      EXPECT_EQ(sign, F > 0 ? 1 : -1);
+      EXPECT_NEAR(logAbs, std::log(std::fabs(F)), 1e-13 * (std::fabs(P) + r) / std::fabs(F) + 1e-14);
+    }
+  }
+  // Exactly zero: a factor vanishes and r = 0.
+  const ProductKernel z({ Plane(0, 0, 1), Wave() }, 0.0);
+  const double p0[3] = { 1, 2, 0 };
+  double m = 1.0, logAbs = 0.0;
+  long e = 5;
+  z.EvaluateScaled(p0, m, e);
+  EXPECT_EQ(m, 0.0);
+  EXPECT_EQ(z.EvaluateSignAndLog(p0, logAbs), 0);
+  EXPECT_TRUE(std::isinf(logAbs) && logAbs < 0);
+  // A zero factor with r ≠ 0 gives F = −r.
+  const ProductKernel zr({ Plane(0, 0, 1), Wave() }, 0.75);
+  zr.EvaluateScaled(p0, m, e);
+  EXPECT_EQ(std::ldexp(m, static_cast<int>(e)), -0.75);
+  EXPECT_EQ(zr.EvaluateSignAndLog(p0, logAbs), -1);
+  EXPECT_DOUBLE_EQ(logAbs, std::log(0.75));
+}
+
+TEST(ProductKernel, OverflowClampsWithTheExactSign)
+{
+  // 200 factors of 1e10: P = 1e2000. With one negative factor: −1e2000.
+  for (int negative = 0; negative < 2; ++negative)
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < 200; ++i)
+      factors.push_back(ConstantFactor(i == 7 && negative ? -1e10 : 1e10, 1e12));
+    for (double r : { 0.0, 0.5, -3.0, 1e250 })
+    {
+      const ProductKernel k(factors, r);
+      const double p[3] = { 0.1, 0.2, 0.3 };
+      const double expected = negative ? -DBL_MAX : DBL_MAX;
+      EXPECT_EQ(k.Evaluate(p), expected);
+      double g[3];
+      EXPECT_EQ(k.EvaluateWithGradient(p, g), expected);
+      // ∇F = Σ_i ∇f_i Π_{j≠i} f_j: 200·1e12·(±1e1990), far beyond the range.
+      EXPECT_EQ(g[0], expected);
+      EXPECT_EQ(g[1], -expected);
+      EXPECT_EQ(g[2], expected);
+      double v;
+      k.EvaluatePoints(p, 1, &v);
+      EXPECT_EQ(v, expected);
+      k.EvaluateLine(p, p, 1, &v);
+      EXPECT_EQ(v, expected);
+      double m;
+      long e;
+      k.EvaluateScaled(p, m, e);
+      EXPECT_EQ(m > 0, !negative);
+      // log2(1e2000) = 6643.856...
+      EXPECT_NEAR(std::log2(std::fabs(m)) + e, 2000 * std::log2(10.0), 1e-9);
+      double logAbs;
+      EXPECT_EQ(k.EvaluateSignAndLog(p, logAbs), negative ? -1 : 1);
+      EXPECT_TRUE(RelativelyNear(logAbs, 2000 * std::log(10.0), 1e-14));
+    }
+  }
+}
+
+// BUG (see report): Finish() clamps the out-of-range product to ±DBL_MAX *before*
+// subtracting r, so for a blending comparable to DBL_MAX the result is no longer ±DBL_MAX
+// and can even lose its sign (DBL_MAX − DBL_MAX = 0), while EvaluateScaled() is right.
+TEST(ProductKernel, OverflowClampIsExactForHugeBlending)
+{
+  std::vector<Factor> factors;
+  for (int i = 0; i < 200; ++i)
+    factors.push_back(ConstantFactor(1e10)); // P = 1e2000
+  const double p[3] = { 0, 0, 0 };
+  for (double r : { DBL_MAX, 1e308, -1e300 })
+  {
+    const ProductKernel k(factors, r);
+    double m;
+    long e;
+    k.EvaluateScaled(p, m, e);
+    EXPECT_GT(m, 0.0) << "r = " << r;
+    EXPECT_NEAR(std::log2(m) + e, 2000 * std::log2(10.0), 1e-9) << "r = " << r;
+    EXPECT_EQ(k.Evaluate(p), DBL_MAX) << "F = 1e2000 − r is beyond the range, r = " << r;
+  }
+}
+
+TEST(ProductKernel, IntermediateOverflowAndUnderflowCancel)
+{
+  // 1e-300·1e-300·1e-300·1e300·1e300·1e300·2 = 2, in any order.
+  std::vector<Factor> a, b;
+  for (int i = 0; i < 3; ++i)
+    a.push_back(ConstantFactor(1e-300, 1e-300));
+  for (int i = 0; i < 3; ++i)
+    a.push_back(ConstantFactor(1e300, 1e300));
+  a.push_back(ConstantFactor(2.0, 0.0));
+  for (int i = 6; i >= 0; --i)
+    b.push_back(a[i]);
+  for (const auto& factors : { a, b })
+  {
+    const ProductKernel k(factors, 0.5);
+    const double p[3] = { 0, 0, 0 };
+    EXPECT_TRUE(RelativelyNear(k.Evaluate(p), 1.5, 1e-14));
+    double g[3];
+    EXPECT_TRUE(RelativelyNear(k.EvaluateWithGradient(p, g), 1.5, 1e-14));
+    // ∇F = Σ_i g_i·Π_{j≠i} f_j = 2·(3·1e-300·1e300 + 3·1e300·1e-300)/1 ... per factor:
+    // the six non-constant factors each contribute 2·(g_i/f_i) = 2 (since g_i = f_i).
+    EXPECT_TRUE(RelativelyNear(g[0], 12.0, 1e-13));
+    EXPECT_TRUE(RelativelyNear(g[1], -12.0, 1e-13));
+    EXPECT_TRUE(RelativelyNear(g[2], 6.0, 1e-13));
+    double m;
+    long e;
+    k.EvaluateScaled(p, m, e);
+    EXPECT_TRUE(RelativelyNear(std::ldexp(m, static_cast<int>(e)), 1.5, 1e-14));
+  }
+}
+
+TEST(ProductKernel, UnderflowKeepsTheSign)
+{
+  // 201 (odd) or 200 (even) spheres of radius 1e-2 about the origin: each is −1e-4 there,
+  // so P = ∓1e-804 (far below the smallest denormal, ~4.9e-324).
+  const double c[3] = { 0, 0, 0 };
+  for (int count : { 200, 201 })
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < count; ++i)
+      factors.push_back(Sphere(c, 1e-2));
+    const double sign = count % 2 ? -1.0 : 1.0;
+    const double p[3] = { 0, 0, 0 };
+    const double tiny = sign * std::numeric_limits<double>::denorm_min();
+    const ProductKernel k(factors, 0.0);
+    EXPECT_EQ(k.Evaluate(p), tiny) << count << " factors";
+    double g[3];
+    EXPECT_EQ(k.EvaluateWithGradient(p, g), tiny);
+    EXPECT_EQ(g[0], 0.0); // every ∇f_i vanishes at the centre
+    double v;
+    k.EvaluatePoints(p, 1, &v);
+    EXPECT_EQ(v, tiny);
+    std::vector<double> row(3);
+    const double o[3] = { -1e-6, 0, 0 }, s[3] = { 1e-6, 0, 0 };
+    k.EvaluateLine(o, s, 3, row.data());
+    for (double x : row)
+    {
+      EXPECT_EQ(std::signbit(x), sign < 0);
+      EXPECT_NE(x, 0.0);
+      EXPECT_LE(std::fabs(x), 1e-300);
+    }
+    double m;
+    long e;
+    k.EvaluateScaled(p, m, e);
+    EXPECT_EQ(m < 0, sign < 0);
+    EXPECT_NEAR(std::log10(std::fabs(m)) + e * std::log10(2.0), -4.0 * count, 1e-9);
+    double logAbs;
+    EXPECT_EQ(k.EvaluateSignAndLog(p, logAbs), static_cast<int>(sign));
+    EXPECT_TRUE(RelativelyNear(logAbs, -4.0 * count * std::log(10.0), 1e-13));
+
+    // With r ≠ 0 the product is negligible: F = −r.
+    const ProductKernel kr(factors, 0.25);
+    EXPECT_EQ(kr.Evaluate(p), -0.25);
+    kr.EvaluateScaled(p, m, e);
+    EXPECT_EQ(std::ldexp(m, static_cast<int>(e)), -0.25);
+  }
+}
+
+TEST(ProductKernel, NearestFactor)
+{
+  const double c0[3] = { 0, 0, 0 }, c1[3] = { 3, 0, 0 }, c2[3] = { 0, 3, 0 };
+  const ProductKernel k({ Sphere(c0, 1), Sphere(c1, 1), Sphere(c2, 1), Plane(0, 0, 1, 5) }, 0.5);
+  const double a[3] = { 1.1, 0, 0 };   // 0.1 from sphere 0
+  const double b[3] = { 1.8, 0, 0 };   // 0.2 from sphere 1
+  const double d[3] = { 0, 2.05, 0 };  // 0.05 from sphere 2
+  const double e[3] = { 10, 10, 4.9 }; // 0.1 from the plane z = 5
+  EXPECT_EQ(k.NearestFactor(a), 0);
+  EXPECT_EQ(k.NearestFactor(b), 1);
+  EXPECT_EQ(k.NearestFactor(d), 2);
+  EXPECT_EQ(k.NearestFactor(e), 3);
+  // On a zero set exactly, at the centre of a sphere (whose gradient vanishes there).
+  const ProductKernel z({ Sphere(c0, 1), Plane(0, 0, 1) }, 0.0);
+  EXPECT_EQ(z.NearestFactor(c0), 1);
+  const double above[3] = { 0, 0, 0.5 };
+  EXPECT_EQ(z.NearestFactor(above), 1); // sphere: 0.75/1 = 0.75 > plane: 0.5
+}
+
+// ---------------------------------------------------------------------------------------
+// 10⁴ unit spheres at random centres in [0, 10]³, r = 0.5: the product is 10^(±thousands).
+class ManySpheres : public ::testing::Test
+{
+protected:
+  static constexpr int Count = 10000;
+  static constexpr double Blending = 0.5;
+
+  static void SetUpTestSuite()
+  {
+    Random rng(47);
+    Centers = new std::vector<Point>();
+    std::vector<Factor> factors;
+    for (int i = 0; i < Count; ++i)
+    {
+      Centers->push_back(rng.InBox(0, 10));
+      factors.push_back(Sphere(Centers->back().data(), 1.0));
+    }
+    Kernel = new ProductKernel(std::move(factors), Blending);
+  }
+  static void TearDownTestSuite()
+  {
+    delete Kernel;
+    delete Centers;
+    Kernel = nullptr;
+    Centers = nullptr;
+  }
+
+  struct Reference
+  {
+    int SignP = 1;       // sign of Π f_i
+    long double LogP = 0; // Σ ln|f_i|
+    long double Slack = 0; // how far the double evaluation may be off in LogP
+    bool HasZero = false;
+  };
+
+  /// Σ ln|f_i| and Π sign f_i, in long double, independently of the kernel.
+  static Reference LogSum(const double p[3])
+  {
+    Reference ref;
+    for (const Point& c : *Centers)
+    {
+      // The kernel subtracts the centre in double (q = p + (−c)), then evaluates.
+      long double d2 = 0;
+      long double scale = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        const long double q = static_cast<long double>(p[a]) - c[a];
+        d2 += q * q;
+      }
+      scale += d2;
+      const long double f = d2 - 1;
+      if (f == 0)
+      {
+        ref.HasZero = true;
+        continue;
+      }
+      if (f < 0)
+        ref.SignP = -ref.SignP;
+      ref.LogP += std::log(std::fabs(f));
+      ref.Slack += 4 * DBL_EPSILON * scale / std::fabs(f);
+    }
+    return ref;
+  }
+
+  /// ln|P − r| and its sign from the reference; false where too close to call.
+  static bool ExpectedF(const Reference& ref, int& sign, long double& logAbs)
+  {
+    const long double logR = std::log(static_cast<long double>(Blending));
+    if (ref.HasZero)
+      return false;
+    if (ref.SignP < 0)
+    {
+      sign = -1; // −|P| − r
+      const long double hi = std::max(ref.LogP, logR), lo = std::min(ref.LogP, logR);
+      logAbs = hi + std::log1p(std::exp(lo - hi));
+      return true;
+    }
+    const long double gap = ref.LogP - logR;
+    if (std::fabs(gap) < 1e-6L + ref.Slack)
+      return false;
+    sign = gap > 0 ? 1 : -1;
+    const long double hi = std::max(ref.LogP, logR), lo = std::min(ref.LogP, logR);
+    logAbs = hi + std::log1p(-std::exp(lo - hi));
+    return true;
+  }
+
+  static std::vector<Point>* Centers;
+  static ProductKernel* Kernel;
+};
+std::vector<Point>* ManySpheres::Centers = nullptr;
+ProductKernel* ManySpheres::Kernel = nullptr;
+
+TEST_F(ManySpheres, GridIsFiniteAndSignsMatchTheLogSum)
+{
+  const int n = 11;
+  const double lo = -1.5, hi = 11.5, h = (hi - lo) / (n - 1);
+  std::vector<double> xyz;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        xyz.push_back(lo + i * h);
+        xyz.push_back(lo + j * h + 0.013); // off the lattice of round numbers
+        xyz.push_back(lo + k * h - 0.007);
+      }
+  const size_t count = xyz.size() / 3;
+  std::vector<double> points(count);
+  Kernel->EvaluatePoints(xyz.data(), count, points.data());
+  std::vector<double> line(count);
+  for (size_t row = 0; row < count; row += n)
+  {
+    const double step[3] = { h, 0, 0 };
+    Kernel->EvaluateLine(&xyz[3 * row], step, n, &line[row]);
+  }
+  const long double logMax = std::log(static_cast<long double>(DBL_MAX));
+  int positive = 0, negative = 0, clamped = 0, checkedLogs = 0;
+  for (size_t i = 0; i < count; ++i)
+  {
+    const double* p = &xyz[3 * i];
+    const double F = Kernel->Evaluate(p);
+    double g[3];
+    const double Fg = Kernel->EvaluateWithGradient(p, g);
+    ASSERT_TRUE(std::isfinite(F)) << "point " << i;
+    ASSERT_TRUE(std::isfinite(Fg)) << "point " << i;
+    ASSERT_TRUE(std::isfinite(points[i])) << "point " << i;
+    ASSERT_TRUE(std::isfinite(line[i])) << "point " << i;
+    for (double gk : g)
+      ASSERT_TRUE(std::isfinite(gk)) << "gradient at point " << i;
+
+    const Reference ref = LogSum(p);
+    int sign;
+    long double logAbs;
+    if (!ExpectedF(ref, sign, logAbs))
+      continue;
+    (sign > 0 ? positive : negative)++;
+    EXPECT_EQ(F > 0 ? 1 : -1, sign) << "Evaluate at point " << i << ", log|P| = " << (double)ref.LogP;
+    EXPECT_EQ(Fg > 0 ? 1 : -1, sign) << "EvaluateWithGradient at point " << i;
+    EXPECT_EQ(points[i] > 0 ? 1 : -1, sign) << "EvaluatePoints at point " << i;
+    EXPECT_EQ(line[i] > 0 ? 1 : -1, sign) << "EvaluateLine at point " << i;
+
+    // Beyond the double range: exactly ±DBL_MAX.
+    if (logAbs > logMax + 1)
+    {
+      ++clamped;
+      EXPECT_EQ(F, sign * DBL_MAX) << "point " << i;
+      EXPECT_EQ(Fg, sign * DBL_MAX) << "point " << i;
+      EXPECT_EQ(points[i], sign * DBL_MAX) << "point " << i;
+      EXPECT_EQ(line[i], sign * DBL_MAX) << "point " << i;
+    }
+    else if (logAbs < logMax - 1)
+    {
+      EXPECT_TRUE(RelativelyNear(F, sign * std::exp(static_cast<double>(logAbs)),
+        1e-9 + 2 * static_cast<double>(ref.Slack)));
+    }
+
+    // The scaled forms carry the magnitude exactly.
+    double m;
+    long e;
+    Kernel->EvaluateScaled(p, m, e);
+    EXPECT_EQ(m > 0 ? 1 : -1, sign) << "EvaluateScaled at point " << i;
+    EXPECT_GE(std::fabs(m), 0.5);
+    EXPECT_LT(std::fabs(m), 1.0);
+    const long double scaledLog = std::log(std::fabs(static_cast<long double>(m))) +
+      e * std::log(static_cast<long double>(2));
+    const long double tol = 1e-9L + 2 * ref.Slack + 1e-13L * std::fabs(logAbs);
+    EXPECT_NEAR(static_cast<double>(scaledLog), static_cast<double>(logAbs), static_cast<double>(tol))
+      << "EvaluateScaled at point " << i;
+    double la;
+    EXPECT_EQ(Kernel->EvaluateSignAndLog(p, la), sign) << "EvaluateSignAndLog at point " << i;
+    EXPECT_NEAR(la, static_cast<double>(logAbs), static_cast<double>(tol)) << "point " << i;
+    ++checkedLogs;
+  }
+  EXPECT_GT(positive, 0);
+  EXPECT_GT(negative, 0);
+  EXPECT_GT(clamped, static_cast<int>(count) / 2) << "the test must exercise the clamping";
+  EXPECT_GT(checkedLogs, static_cast<int>(count) * 9 / 10);
+}
+
+TEST_F(ManySpheres, NearestFactorPicksTheSphereUnderThePoint)
+{
+  Random rng(48);
+  for (int n = 0; n < 30; ++n)
+  {
+    const int k = rng.Integer(0, Count - 1);
+    // A point on sphere k (up to rounding).
+    Point d = rng.InBox(-1, 1);
+    const double len = std::hypot(d[0], d[1], d[2]);
+    const Point& c = (*Centers)[k];
+    const double p[3] = { c[0] + d[0] / len, c[1] + d[1] / len, c[2] + d[2] / len };
+    EXPECT_EQ(Kernel->NearestFactor(p), k);
+    // A point 0.01 outside sphere k, checked against the brute-force nearest surface.
+    const double q[3] = { c[0] + 1.01 * d[0] / len, c[1] + 1.01 * d[1] / len,
+      c[2] + 1.01 * d[2] / len };
+    int best = -1;
+    double bestD = 1e300;
+    for (int i = 0; i < Count; ++i)
+    {
+      const Point& ci = (*Centers)[i];
+      const double r = std::hypot(q[0] - ci[0], q[1] - ci[1], q[2] - ci[2]);
+      // First-order distance of d² − 1: |r² − 1| / (2r).
+      const double dist = std::fabs(r * r - 1) / (2 * r);
+      if (dist < bestD)
+      {
+        bestD = dist;
+        best = i;
+      }
+    }
+    EXPECT_EQ(Kernel->NearestFactor(q), best);
+  }
+}
