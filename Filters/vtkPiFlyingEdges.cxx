@@ -5,6 +5,7 @@
 #include "PiProduct.h"
 #include "vtkPiSurface.h"
 
+#include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFlyingEdges3D.h"
@@ -357,6 +358,15 @@ int vtkPiFlyingEdges::RequestData(
   contour->Update();
   output->ShallowCopy(contour->GetOutput());
   output->GetPointData()->Initialize();
+  // Flying edges winds its triangles facing decreasing values; ours face ∇F, like the
+  // Normals, so that renderers light the side they see.
+  vtkNew<vtkCellArray> polys;
+  polys->DeepCopy(output->GetPolys());
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->ReverseCellAtId(c);
+  }
+  output->SetPolys(polys);
   this->UpdateProgress(0.8);
   if (this->CheckAbort())
   {

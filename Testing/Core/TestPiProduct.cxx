@@ -320,7 +320,7 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
         xyz[3 * i + a] = origin[a] + i * step[a];
     }
     k.EvaluatePoints(xyz.data(), count, points.data());
-    int wellConditioned = 0;
+    int withinRelative = 0;
     for (int i = 0; i < count; ++i)
     {
       const double* p = &xyz[3 * i];
@@ -332,14 +332,15 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
       EXPECT_TRUE(Near(points[i], F, 1e-15 * (std::fabs(P) + std::fabs(r))))
         << "EvaluatePoints at " << i;
       // Horner on the restricted polynomials rounds differently: ~1e-12 relative to
-      // the product, more where a factor is nearly cancelling.
+      // the product, more only where a factor nearly cancels (observed error
+      // <= 1.5·1e-16·conditioning; allowed 1e-14·conditioning).
       const double cond = Conditioning(factors, p);
       const double tol = std::max(1e-12, 1e-14 * cond) * std::fabs(P) + 1e-15 * std::fabs(r);
       EXPECT_NEAR(line[i], F, tol) << "EvaluateLine at " << i << ", conditioning " << cond;
-      if (1e-14 * cond <= 1e-12)
-        ++wellConditioned;
+      if (std::fabs(line[i] - F) <= 1e-12 * std::fabs(P))
+        ++withinRelative;
     }
-    EXPECT_GT(wellConditioned, count / 2) << "most points are compared at 1e-12 relative";
+    EXPECT_GE(withinRelative, count * 95 / 100) << "nearly all points agree to 1e-12 relative";
   }
   // n = 0 and n = 1 rows.
   const ProductKernel k({ Wave() }, 0.0);
@@ -577,21 +578,50 @@ TEST(ProductKernel, UnderflowKeepsTheSign)
       EXPECT_NE(x, 0.0);
       EXPECT_LE(std::fabs(x), 1e-300);
     }
-    double m;
-    long e;
-    k.EvaluateScaled(p, m, e);
-    EXPECT_EQ(m < 0, sign < 0);
-    EXPECT_NEAR(std::log10(std::fabs(m)) + e * std::log10(2.0), -4.0 * count, 1e-9);
-    double logAbs;
-    EXPECT_EQ(k.EvaluateSignAndLog(p, logAbs), static_cast<int>(sign));
-    EXPECT_TRUE(RelativelyNear(logAbs, -4.0 * count * std::log(10.0), 1e-13));
-
     // With r ≠ 0 the product is negligible: F = −r.
     const ProductKernel kr(factors, 0.25);
     EXPECT_EQ(kr.Evaluate(p), -0.25);
+    double m;
+    long e;
     kr.EvaluateScaled(p, m, e);
     EXPECT_EQ(std::ldexp(m, static_cast<int>(e)), -0.25);
   }
+}
+
+// BUG (see report): with r = 0, EvaluateScaled() computes F at the scale
+// top = max(e, er) with er = 0 (r has no exponent), so a product below 2^-1074 is
+// flushed to 0 (and below 2^-1022 loses bits): EvaluateScaled returns 0 and
+// EvaluateSignAndLog returns sign 0 and -inf, although the product is ±1e-800.
+TEST(ProductKernel, ScaledFormsOfAnUnderflowingProduct)
+{
+  const double c[3] = { 0, 0, 0 };
+  for (int count : { 200, 201 })
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < count; ++i)
+      factors.push_back(Sphere(c, 1e-2));
+    const ProductKernel k(factors, 0.0);
+    const double p[3] = { 0, 0, 0 };
+    const int sign = count % 2 ? -1 : 1;
+    double m;
+    long e;
+    k.EvaluateScaled(p, m, e);
+    EXPECT_EQ(m > 0 ? 1 : (m < 0 ? -1 : 0), sign) << count << " factors";
+    EXPECT_NEAR(std::log10(std::fabs(m)) + e * std::log10(2.0), -4.0 * count, 1e-9);
+    double logAbs;
+    EXPECT_EQ(k.EvaluateSignAndLog(p, logAbs), sign);
+    EXPECT_TRUE(RelativelyNear(logAbs, -4.0 * count * std::log(10.0), 1e-13));
+  }
+  // Just below the normal range (2^-1030): F must keep all 53 bits.
+  std::vector<Factor> factors = { ConstantFactor(0x1.23456789abcdfp-515),
+    ConstantFactor(-0x1.fedcba9876543p-515) };
+  const ProductKernel k(factors, 0.0);
+  const double p[3] = { 0, 0, 0 };
+  double m;
+  long e;
+  k.EvaluateScaled(p, m, e);
+  EXPECT_EQ(e, -1028);
+  EXPECT_EQ(m, -0x1.23456789abcdfp0 * 0x1.fedcba9876543p0 / 4);
 }
 
 TEST(ProductKernel, NearestFactor)

@@ -13,7 +13,9 @@
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkCellData.h"
 #include "vtkPolyDataConnectivityFilter.h"
+#include "vtkPolyDataNormals.h"
 #include "vtkStringArray.h"
 
 int TestPiFlyingEdges(int, char*[])
@@ -74,6 +76,28 @@ int TestPiFlyingEdges(int, char*[])
     }
   }
   PI_CHECK_NEAR(maxDistance, 0.0, 1e-12 * 6); // projected onto F = 0
+  // Triangles face the same way as the normals (towards increasing F).
+  vtkNew<vtkPolyDataNormals> faceNormals;
+  faceNormals->SetInputData(mesh);
+  faceNormals->ComputeCellNormalsOn();
+  faceNormals->ComputePointNormalsOff();
+  faceNormals->ConsistencyOff();
+  faceNormals->AutoOrientNormalsOff();
+  faceNormals->SplittingOff();
+  faceNormals->Update();
+  vtkDataArray* cellNormals = faceNormals->GetOutput()->GetCellData()->GetNormals();
+  int misoriented = 0;
+  for (vtkIdType c = 0; cellNormals && c < mesh->GetNumberOfCells(); ++c)
+  {
+    const vtkIdType* ids;
+    vtkIdType npts;
+    mesh->GetCellPoints(c, npts, ids);
+    double nc[3], nv[3];
+    cellNormals->GetTuple(c, nc);
+    normals->GetTuple(ids[0], nv);
+    misoriented += (nc[0] * nv[0] + nc[1] * nv[1] + nc[2] * nv[2]) < 0;
+  }
+  PI_CHECK(cellNormals && misoriented == 0);
   // The neck radius on x = 0 is sqrt(1.5 − d²).
   double neck = 0;
   for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
