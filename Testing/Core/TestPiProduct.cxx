@@ -518,6 +518,40 @@ TEST(ProductKernel, OverflowClampIsExactForHugeBlending)
   }
 }
 
+TEST(ProductKernel, EdgeOfTheDoubleRange)
+{
+  const double p[3] = { 0, 0, 0 };
+  // Exactly DBL_MAX = (2 − 2^-52)·2^1023 is representable: no clamping, no change.
+  {
+    const ProductKernel k({ ConstantFactor(0x1.fffffffffffffp511, 0x1.fffffffffffffp511),
+                            ConstantFactor(0x1p512, 0.0) },
+      0.0);
+    EXPECT_EQ(k.Evaluate(p), DBL_MAX);
+    double g[3];
+    EXPECT_EQ(k.EvaluateWithGradient(p, g), DBL_MAX);
+    EXPECT_EQ(g[0], DBL_MAX);
+    EXPECT_EQ(g[1], -DBL_MAX);
+    EXPECT_EQ(g[2], 0x1.fffffffffffffp1022);
+  }
+  // 1.5·2^1024: just beyond; value and gradient clamp, neither becomes inf.
+  {
+    const ProductKernel k({ ConstantFactor(0x1.8p512, 0x1.8p512), ConstantFactor(0x1p512, 0.0) }, 0.0);
+    EXPECT_EQ(k.Evaluate(p), DBL_MAX);
+    double g[3];
+    EXPECT_EQ(k.EvaluateWithGradient(p, g), DBL_MAX);
+    EXPECT_EQ(g[0], DBL_MAX);
+    EXPECT_EQ(g[1], -DBL_MAX);
+    EXPECT_EQ(g[2], 0x1.8p1023);
+  }
+  // The smallest normal and denormal products are exact.
+  {
+    const ProductKernel k({ ConstantFactor(0x1p-511), ConstantFactor(-0x1p-511) }, 0.0);
+    EXPECT_EQ(k.Evaluate(p), -0x1p-1022);
+    const ProductKernel d({ ConstantFactor(0x1p-537), ConstantFactor(0x1p-537) }, 0.0);
+    EXPECT_EQ(d.Evaluate(p), 0x1p-1074);
+  }
+}
+
 TEST(ProductKernel, IntermediateOverflowAndUnderflowCancel)
 {
   // 1e-300·1e-300·1e-300·1e300·1e300·1e300·2 = 2, in any order.
@@ -636,6 +670,16 @@ TEST(ProductKernel, NearestFactor)
   EXPECT_EQ(k.NearestFactor(b), 1);
   EXPECT_EQ(k.NearestFactor(d), 2);
   EXPECT_EQ(k.NearestFactor(e), 3);
+  // The distance is |f|/|∇f|, not |f|: a sphere scaled by 100 at 0.1 is nearer than a
+  // plain one at 0.2.
+  PrimitiveSpec big;
+  big.Type = PrimitiveType::Sphere;
+  big.Scale = 100;
+  const ProductKernel s({ Sphere(c1, 1), FromSpec(big) }, 0.0);
+  const double between[3] = { 1.1, 0, 0 }; // 0.1 from the scaled sphere, 0.9 from the other
+  EXPECT_EQ(s.NearestFactor(between), 1);
+  const double nearOther[3] = { 1.8, 0, 0 }; // 0.8 from the scaled one, 0.2 from sphere 0
+  EXPECT_EQ(s.NearestFactor(nearOther), 0);
   // On a zero set exactly, at the centre of a sphere (whose gradient vanishes there).
   const ProductKernel z({ Sphere(c0, 1), Plane(0, 0, 1) }, 0.0);
   EXPECT_EQ(z.NearestFactor(c0), 1);
