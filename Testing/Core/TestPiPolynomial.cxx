@@ -364,6 +364,39 @@ TEST(Polynomial3, RestrictToLineReproducesValuesAlongTheLine)
   EXPECT_EQ(z[0], 0.0);
 }
 
+TEST(Polynomial3, RestrictToLineIntoABufferMatchesTheVectorForm)
+{
+  Random rng(9);
+  // Alternate high and low degrees so that any reused scratch space shrinks and grows.
+  for (int n = 0; n < 40; ++n)
+  {
+    const Polynomial3 p = rng.Polynomial(n % 2 ? 2 : 12, n % 2 ? 3 : 20);
+    const Point o = rng.InBox(-1, 1), d = rng.InBox(-1, 1);
+    const std::vector<double> v = p.RestrictToLine(o.data(), d.data());
+    const size_t size = static_cast<size_t>(std::max(p.GetDegree(), 0) + 1);
+    ASSERT_EQ(v.size(), size);
+    std::vector<double> buffer(size + 4, 12345.0);
+    p.RestrictToLine(o.data(), d.data(), buffer.data());
+    for (size_t k = 0; k < size; ++k)
+    {
+      EXPECT_EQ(buffer[k], v[k]) << "coefficient " << k;
+    }
+    for (size_t k = size; k < buffer.size(); ++k)
+    {
+      EXPECT_EQ(buffer[k], 12345.0) << "wrote past out[degree]";
+    }
+  }
+  // Exact coefficients of a known case: (x + 2y)^3 on (1, 0, 0) + t·(0, 1, 0) is (1 + 2t)^3.
+  const Polynomial3 c = (X() + Y().Scaled(2)).Pow(3);
+  const double o[3] = { 1, 0, 0 }, d[3] = { 0, 1, 0 };
+  double out[4];
+  c.RestrictToLine(o, d, out);
+  EXPECT_EQ(out[0], 1.0);
+  EXPECT_EQ(out[1], 6.0);
+  EXPECT_EQ(out[2], 12.0);
+  EXPECT_EQ(out[3], 8.0);
+}
+
 TEST(Polynomial3, EvaluateUnivariateIsHorner)
 {
   const double c[4] = { 1.0, -2.0, 0.5, 3.0 }; // 1 − 2t + t²/2 + 3t³

@@ -626,6 +626,11 @@ TEST(PrimitiveSpec, FactorRestrictionToLines)
     const Point o = rng.InBox(-1, 1), d = rng.InBox(-1, 1);
     const std::vector<double> c = f.RestrictToLine(o.data(), d.data());
     EXPECT_EQ(c.size(), static_cast<size_t>(f.Poly.GetDegree() + 1));
+    std::vector<double> buffer(c.size() + 1, -7.0);
+    f.RestrictToLine(o.data(), d.data(), buffer.data());
+    for (size_t k = 0; k < c.size(); ++k)
+      EXPECT_EQ(buffer[k], c[k]) << TypeKey(t);
+    EXPECT_EQ(buffer.back(), -7.0) << TypeKey(t) << ": wrote past out[degree]";
     for (double tt : { -2.0, -0.3, 0.0, 0.9, 1.7 })
     {
       const double p[3] = { o[0] + tt * d[0], o[1] + tt * d[1], o[2] + tt * d[2] };

@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace pisurf;
@@ -549,6 +550,8 @@ TEST(ProductKernel, EdgeOfTheDoubleRange)
     EXPECT_EQ(k.Evaluate(p), -0x1p-1022);
     const ProductKernel d({ ConstantFactor(0x1p-537), ConstantFactor(0x1p-537) }, 0.0);
     EXPECT_EQ(d.Evaluate(p), 0x1p-1074);
+    const ProductKernel d6({ ConstantFactor(0x1.8p-536), ConstantFactor(-0x1p-536) }, 0.0);
+    EXPECT_EQ(d6.Evaluate(p), -0x1.8p-1072); // 6·2^-1074, a denormal
   }
 }
 
@@ -656,6 +659,140 @@ TEST(ProductKernel, ScaledFormsOfAnUnderflowingProduct)
   k.EvaluateScaled(p, m, e);
   EXPECT_EQ(e, -1028);
   EXPECT_EQ(m, -0x1.23456789abcdfp0 * 0x1.fedcba9876543p0 / 4);
+}
+
+TEST(ProductKernel, DistanceAndNormalMatchTheGradient)
+{
+  Random rng(49);
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    std::vector<Factor> factors;
+    const int n = 2 + trial % 4;
+    for (int i = 0; i < n; ++i)
+      factors.push_back(trial % 7 == 3 && i == 1 ? Wave() : RandomPrimitive(rng));
+    const double r = trial % 2 ? 0.2 : 0.0;
+    const ProductKernel k(factors, r);
+    for (int m = 0; m < 10; ++m)
+    {
+      const Point p = rng.InBox(-2, 2);
+      double g[3], normal[3];
+      const double F = k.EvaluateWithGradient(p.data(), g);
+      const double gn = std::hypot(g[0], g[1], g[2]);
+      const double d = k.EvaluateDistance(p.data(), normal);
+      ASSERT_GT(gn, 0.0);
+      EXPECT_TRUE(Near(d, F / gn, 1e-12)) << "F = " << F << ", |grad F| = " << gn;
+      for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(normal[a], g[a] / gn, 1e-13);
+      EXPECT_NEAR(std::hypot(normal[0], normal[1], normal[2]), 1.0, 1e-14);
+    }
+  }
+  // A plane: the distance is exact and the normal is the unit normal.
+  const ProductKernel plane({ Plane(0, 3, 4, 1.0) }, 0.5);
+  const double p[3] = { 9, 0.6, 0.8 }; // n̂·p − 1 = 0, so F = −0.5
+  double normal[3];
+  EXPECT_NEAR(plane.EvaluateDistance(p, normal), -0.5, 1e-15);
+  EXPECT_NEAR(normal[0], 0.0, 1e-16);
+  EXPECT_NEAR(normal[1], 0.6, 1e-15);
+  EXPECT_NEAR(normal[2], 0.8, 1e-15);
+}
+
+TEST(ProductKernel, DistanceWhereTheGradientVanishes)
+{
+  double normal[3] = { 5, 5, 5 };
+  // Two zero factors, r = 0: F = 0 and ∇F = 0: distance 0, normal 0.
+  const ProductKernel two({ Plane(1, 0, 0), Plane(0, 1, 0), Wave() }, 0.0);
+  const double axis[3] = { 0, 0, 0.7 };
+  EXPECT_EQ(two.EvaluateDistance(axis, normal), 0.0);
+  EXPECT_EQ(normal[0], 0.0);
+  EXPECT_EQ(normal[1], 0.0);
+  EXPECT_EQ(normal[2], 0.0);
+  // The centre of a sphere: ∇F = 0 and F = −1 − r: distance −inf.
+  const double c[3] = { 1, 2, 3 };
+  const ProductKernel ball({ Sphere(c, 1) }, 0.5);
+  normal[0] = 5;
+  const double d = ball.EvaluateDistance(c, normal);
+  EXPECT_TRUE(std::isinf(d) && d < 0) << d;
+  EXPECT_EQ(normal[0], 0.0);
+  // Two zero factors with r > 0: F = −r, ∇F = 0: −inf.
+  const ProductKernel twoR({ Plane(1, 0, 0), Plane(0, 1, 0) }, 0.25);
+  const double dr = twoR.EvaluateDistance(axis, normal);
+  EXPECT_TRUE(std::isinf(dr) && dr < 0) << dr;
+}
+
+TEST(ProductKernel, DistanceOfHugeAndTinyProducts)
+{
+  // 200 spheres of radius 1e-2 about the origin, at p = (1e-3, 0, 0): each factor is
+  // 1e-6 − 1e-4 = −9.9e-5 with gradient (2e-3, 0, 0), so P = (9.9e-5)^200 ≈ 1e-802 and
+  // ∇P/P = 200·(2e-3/−9.9e-5, 0, 0): F/|∇F| = −9.9e-5/(200·2e-3) when r = 0.
+  const double c[3] = { 0, 0, 0 };
+  for (int count : { 200, 201 })
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < count; ++i)
+      factors.push_back(Sphere(c, 1e-2));
+    const double sign = count % 2 ? -1.0 : 1.0;
+    const double p[3] = { 1e-3, 0, 0 };
+    const double f = 1e-6 - 1e-4;
+    double normal[3];
+    const ProductKernel k(factors, 0.0);
+    const double d = k.EvaluateDistance(p, normal);
+    EXPECT_TRUE(RelativelyNear(d, sign * std::fabs(f) / (count * 2e-3), 1e-12)) << count;
+    // ∇P = P·Σ∇f_i/f_i: along −x times the sign of P.
+    EXPECT_NEAR(normal[0], -sign, 1e-15);
+    EXPECT_EQ(normal[1], 0.0);
+    EXPECT_EQ(normal[2], 0.0);
+    // With r > 0 the distance is −r/|∇F|, ~1e798: far away, outside, never NaN.
+    const ProductKernel kr(factors, 0.25);
+    const double dr = kr.EvaluateDistance(p, normal);
+    EXPECT_LT(dr, -1e300);
+    EXPECT_NEAR(normal[0], -sign, 1e-15);
+  }
+  // 100 factors of (x + 1e10) at x = 0: P = 1e1000, ∇P/P = (100/1e10, 0, 0), so the
+  // distance is 1e10/100 = 1e8 with normal +x, although F itself is clamped.
+  std::vector<Factor> big;
+  for (int i = 0; i < 100; ++i)
+    big.push_back(Plane(1, 0, 0, -1e10));
+  const ProductKernel kb(big, 0.5);
+  const double o[3] = { 0, 0, 0 };
+  double normal[3];
+  EXPECT_EQ(kb.Evaluate(o), DBL_MAX);
+  EXPECT_TRUE(RelativelyNear(kb.EvaluateDistance(o, normal), 1e8, 1e-13));
+  EXPECT_NEAR(normal[0], 1.0, 1e-15);
+}
+
+TEST(ProductKernel, SharedBetweenThreads)
+{
+  // "Any number of threads may share one kernel": rows evaluated concurrently give the
+  // same bits as sequentially (EvaluateLine and RestrictToLine keep per-thread buffers).
+  Random rng(50);
+  std::vector<Factor> factors;
+  for (int i = 0; i < 6; ++i)
+    factors.push_back(RandomPrimitive(rng));
+  factors.push_back(Wave());
+  const ProductKernel k(factors, 0.1);
+  const int rows = 64, count = 300;
+  std::vector<Point> origins(rows), steps(rows);
+  for (int r = 0; r < rows; ++r)
+  {
+    origins[r] = rng.InBox(-2, 2);
+    steps[r] = rng.InBox(-0.01, 0.01);
+  }
+  std::vector<double> expected(rows * count), got(rows * count);
+  for (int r = 0; r < rows; ++r)
+    k.EvaluateLine(origins[r].data(), steps[r].data(), count, &expected[r * count]);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+  {
+    threads.emplace_back([&, t]() {
+      for (int rep = 0; rep < 5; ++rep)
+        for (int r = t; r < rows; r += 4)
+          k.EvaluateLine(origins[r].data(), steps[r].data(), count, &got[r * count]);
+    });
+  }
+  for (auto& th : threads)
+    th.join();
+  for (int i = 0; i < rows * count; ++i)
+    ASSERT_EQ(got[i], expected[i]) << "value " << i;
 }
 
 TEST(ProductKernel, NearestFactor)
@@ -855,6 +992,34 @@ TEST_F(ManySpheres, GridIsFiniteAndSignsMatchTheLogSum)
     const long double tol = 1e-9L + 2 * ref.Slack + 1e-13L * std::fabs(logAbs);
     EXPECT_NEAR(static_cast<double>(scaledLog), static_cast<double>(logAbs), static_cast<double>(tol))
       << "EvaluateScaled at point " << i;
+    // Distance and normal, from Σ∇f_i/f_i (long double, independent of the kernel).
+    {
+      long double S[3] = { 0, 0, 0 };
+      for (const Point& c : *Centers)
+      {
+        long double q[3], d2 = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          q[a] = static_cast<long double>(p[a]) - c[a];
+          d2 += q[a] * q[a];
+        }
+        for (int a = 0; a < 3; ++a)
+          S[a] += 2 * q[a] / (d2 - 1);
+      }
+      const long double sn = std::sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+      const long double expectedD =
+        (ref.SignP - std::exp(std::log(static_cast<long double>(Blending)) - ref.LogP)) / sn;
+      double normal[3];
+      const double dist = Kernel->EvaluateDistance(p, normal);
+      ASSERT_TRUE(std::isfinite(dist)) << "point " << i;
+      EXPECT_EQ(dist > 0 ? 1 : -1, sign) << "EvaluateDistance at point " << i;
+      EXPECT_TRUE(RelativelyNear(dist, static_cast<double>(expectedD), 1e-9 + 2 * static_cast<double>(ref.Slack)))
+        << "EvaluateDistance at point " << i;
+      for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(normal[a], static_cast<double>(ref.SignP * S[a] / sn),
+          1e-9 + 2 * static_cast<double>(ref.Slack))
+          << "normal at point " << i;
+    }
     double la;
     EXPECT_EQ(Kernel->EvaluateSignAndLog(p, la), sign) << "EvaluateSignAndLog at point " << i;
     EXPECT_NEAR(la, static_cast<double>(logAbs), static_cast<double>(tol)) << "point " << i;
