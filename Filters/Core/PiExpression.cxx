@@ -32,7 +32,7 @@ public:
     this->SkipSpace();
     if (this->Pos >= this->Text.size())
     {
-      throw ParseError("empty expression");
+      this->Fail("empty expression", 0);
     }
     Polynomial3 p = this->Expression();
     this->SkipSpace();
@@ -216,6 +216,10 @@ private:
       if (it == this->Params.end())
       {
         this->Fail("unknown name '" + name + "' (use x, y, z or a model parameter)", at);
+      }
+      if (!std::isfinite(it->second))
+      {
+        this->Fail("parameter '" + name + "' is not a finite number", at);
       }
       return Polynomial3::Constant(it->second);
     }

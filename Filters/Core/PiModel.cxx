@@ -332,6 +332,31 @@ bool ParseModel(const std::string& text, Model& model, std::string& error)
     error = e.what();
     return false;
   }
+  catch (const json::out_of_range& e)
+  {
+    // A number beyond the double range ("1e999"): say where it is.
+    std::string what = e.what();
+    const size_t q1 = what.find('\''), q2 = what.rfind('\'');
+    std::string where;
+    if (q1 != std::string::npos && q2 > q1)
+    {
+      const size_t at = text.find(what.substr(q1 + 1, q2 - q1 - 1));
+      if (at != std::string::npos)
+      {
+        size_t line = 1, column = 1;
+        for (size_t i = 0; i < at; ++i)
+        {
+          column = text[i] == '\n' ? 1 : column + 1;
+          line += text[i] == '\n';
+        }
+        where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
+      }
+    }
+    const size_t colon = what.find("number overflow");
+    error = "invalid JSON" + where + ": " +
+      (colon != std::string::npos ? what.substr(colon) : what) + " (numbers must be finite)";
+    return false;
+  }
   catch (const std::exception& e)
   {
     error = std::string("invalid JSON: ") + e.what();

@@ -36,9 +36,28 @@ bool Finite3(const double v[3])
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// |v| without overflow or underflow for extreme but finite components.
 double Norm(const double v[3])
 {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double m = std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
+  if (m == 0.0 || !std::isfinite(m))
+  {
+    return m;
+  }
+  const double x = v[0] / m, y = v[1] / m, z = v[2] / m;
+  return m * std::sqrt(x * x + y * y + z * z);
+}
+
+// v / |v|, computed as (v / max|v_i|) / |v / max|v_i||, so that it never overflows.
+void Unit(const double v[3], double u[3])
+{
+  const double m = std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
+  const double s[3] = { v[0] / m, v[1] / m, v[2] / m };
+  const double n = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  for (int i = 0; i < 3; ++i)
+  {
+    u[i] = s[i] / n;
+  }
 }
 
 Polynomial3 Var(int a)
@@ -57,8 +76,8 @@ Polynomial3 Sq(int a, double s)
 // Rotation taking the unit vector a onto +z (the minimal one), so R·a = (0,0,1).
 void AlignToZ(const double axis[3], double R[3][3])
 {
-  const double n = Norm(axis);
-  const double a[3] = { axis[0] / n, axis[1] / n, axis[2] / n };
+  double a[3];
+  Unit(axis, a);
   // Rotation about k = a × z by the angle between a and z.
   const double k[3] = { a[1], -a[0], 0.0 };
   const double s = Norm(k);
@@ -110,8 +129,9 @@ bool TypeFromString(const std::string& s, PrimitiveType& t)
 
 void RotationMatrix(const double axis[3], double angleDeg, double R[3][3])
 {
-  const double n = Norm(axis);
-  const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
+  double u[3];
+  Unit(axis, u);
+  const double x = u[0], y = u[1], z = u[2];
   const double th = angleDeg * Pi / 180.0;
   const double c = std::cos(th), s = std::sin(th), t = 1.0 - c;
   R[0][0] = t * x * x + c;
@@ -275,9 +295,9 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
         error = "normal must be a non-zero vector of finite numbers";
         return false;
       }
-      const double n = Norm(s.Normal);
-      p = Var(0).Scaled(s.Normal[0] / n) + Var(1).Scaled(s.Normal[1] / n) +
-        Var(2).Scaled(s.Normal[2] / n);
+      double n[3];
+      Unit(s.Normal, n);
+      p = Var(0).Scaled(n[0]) + Var(1).Scaled(n[1]) + Var(2).Scaled(n[2]);
       break;
     }
     case PrimitiveType::Cylinder:
@@ -330,14 +350,15 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
       error = "unknown primitive type";
       return false;
   }
+  p = p.Scaled(s.Negate ? -s.Scale : s.Scale);
   if (!p.IsFinite())
   {
-    error = "the parameters overflow the polynomial's coefficients";
+    error = "the parameters (with the scale) overflow the polynomial's coefficients";
     return false;
   }
 
   factor = PolynomialFactor();
-  factor.Poly = p.Scaled(s.Negate ? -s.Scale : s.Scale);
+  factor.Poly = p;
   std::copy(&R[0][0], &R[0][0] + 9, &factor.A[0][0]);
   for (int i = 0; i < 3; ++i)
   {

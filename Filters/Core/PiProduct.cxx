@@ -125,22 +125,54 @@ void ProductKernel::Accumulate(double& m, long& e, double f)
   }
 }
 
+// F = m·2^e − r as mantissa·2^exponent (mantissa in ±[0.5, 1) or 0), exact up to one
+// rounding: both terms are brought to the larger of the two scales first.
+static void ScaledMinus(double m, long e, double r, double& mantissa, long& exponent)
+{
+  int ex;
+  if (m == 0.0)
+  {
+    mantissa = std::frexp(-r, &ex);
+    exponent = r == 0.0 ? 0 : ex;
+    return;
+  }
+  m = std::frexp(m, &ex);
+  e += ex;
+  long top = e;
+  if (r != 0.0)
+  {
+    int er;
+    std::frexp(r, &er);
+    top = std::max<long>(e, er);
+  }
+  const double shift = e - top < -2100 ? 0.0 : std::ldexp(m, static_cast<int>(e - top));
+  const double F = shift - (r == 0.0 ? 0.0 : std::ldexp(r, static_cast<int>(-top)));
+  mantissa = std::frexp(F, &ex);
+  exponent = F == 0.0 ? 0 : top + ex;
+}
+
 double ProductKernel::Finish(double m, long e) const
 {
   if (m == 0.0)
   {
     return -this->Blending;
   }
-  double P = SafeLdexp(m, e);
-  if (P == 0.0)
+  int ex;
+  std::frexp(m, &ex);
+  if (std::labs(e + ex) < 960)
   {
-    if (this->Blending != 0.0)
-    {
-      return -this->Blending;
-    }
-    P = std::copysign(std::numeric_limits<double>::denorm_min(), m);
+    return Clamp(std::ldexp(m, static_cast<int>(e)) - this->Blending);
   }
-  return Clamp(P - this->Blending);
+  // Far from the double range: subtract r at a common scale, then clamp.
+  double fm;
+  long fe;
+  ScaledMinus(m, e, this->Blending, fm, fe);
+  if (fm == 0.0)
+  {
+    return 0.0;
+  }
+  const double F = SafeLdexp(fm, fe);
+  return F == 0.0 ? std::copysign(std::numeric_limits<double>::denorm_min(), fm) : F;
 }
 
 double ProductKernel::Evaluate(const double p[3]) const
@@ -202,26 +234,7 @@ void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& ex
   {
     Accumulate(m, e, f.Evaluate(p));
   }
-  int ex;
-  if (m == 0.0)
-  {
-    mantissa = std::frexp(-this->Blending, &ex);
-    exponent = ex;
-    return;
-  }
-  m = std::frexp(m, &ex);
-  e += ex;
-  // F = m·2^e − r, computed at the larger of the two scales.
-  int er = 0;
-  if (this->Blending != 0.0)
-  {
-    std::frexp(this->Blending, &er);
-  }
-  const long top = std::max<long>(e, er);
-  const double F = std::ldexp(m, static_cast<int>(e - top)) -
-    std::ldexp(this->Blending, static_cast<int>(-top));
-  mantissa = std::frexp(F, &ex);
-  exponent = F == 0.0 ? 0 : top + ex;
+  ScaledMinus(m, e, this->Blending, mantissa, exponent);
 }
 
 int ProductKernel::EvaluateSignAndLog(const double p[3], double& logAbs) const

@@ -236,7 +236,7 @@ TEST(Expression, NonFiniteParametersAreRefused)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ExpectError("x*a", { "not a finite number" }, { { "a", inf } });
   ExpectError("x + a", { "not a finite number" }, { { "a", nan } });
-  // BUG (see report): a lone parameter, or a negated one, is returned unchecked.
+  // Regression (fixed): a lone parameter, or a negated one, is returned unchecked.
   ExpectError("a", {}, { { "a", inf } });
   ExpectError("-a", {}, { { "a", nan } });
 }

@@ -462,7 +462,7 @@ TEST(Model, PrimitiveErrorsNameThePath)
     { "primitives[0]", "rotation axis" });
 }
 
-// BUG (see report): nlohmann::json refuses 1e999 itself with out_of_range.406 ("number
+// Regression (fixed): nlohmann::json refuses 1e999 itself with out_of_range.406 ("number
 // overflow parsing '1e999'"), which ParseModel reports as "invalid JSON: ..." with neither
 // the key path nor the line and column that PiModel.h promises (the finite-number check
 // with the path in Number() is never reached for JSON input).

@@ -785,7 +785,7 @@ TEST(PrimitiveSpec, InvalidParametersNameTheParameter)
   }
 }
 
-// BUG (see report): BuildFactor checks the polynomial for overflow before folding in
+// Regression (fixed): BuildFactor checks the polynomial for overflow before folding in
 // `scale`, so a finite polynomial times a finite scale can yield infinite coefficients
 // that BuildFactor accepts.
 TEST(PrimitiveSpec, ScaleOverflowIsRefused)
@@ -807,7 +807,7 @@ TEST(PrimitiveSpec, ScaleOverflowIsRefused)
   }
 }
 
-// BUG (see report): the normal and the axis are normalised with a plain sqrt(x²+y²+z²),
+// Regression (fixed): the normal and the axis are normalised with a plain sqrt(x²+y²+z²),
 // which overflows for components near 1e200 and underflows to 0 near 1e-200: a valid,
 // finite, non-zero vector then gives a zero polynomial, a wrong axis or a refusal.
 TEST(PrimitiveSpec, ExtremeButValidVectorsAreNormalised)

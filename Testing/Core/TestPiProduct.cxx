@@ -498,7 +498,7 @@ TEST(ProductKernel, OverflowClampsWithTheExactSign)
   }
 }
 
-// BUG (see report): Finish() clamps the out-of-range product to ±DBL_MAX *before*
+// Regression (fixed): Finish() clamps the out-of-range product to ±DBL_MAX *before*
 // subtracting r, so for a blending comparable to DBL_MAX the result is no longer ±DBL_MAX
 // and can even lose its sign (DBL_MAX − DBL_MAX = 0), while EvaluateScaled() is right.
 TEST(ProductKernel, OverflowClampIsExactForHugeBlending)
@@ -625,7 +625,7 @@ TEST(ProductKernel, UnderflowKeepsTheSign)
   }
 }
 
-// BUG (see report): with r = 0, EvaluateScaled() computes F at the scale
+// Regression (fixed): with r = 0, EvaluateScaled() computes F at the scale
 // top = max(e, er) with er = 0 (r has no exponent), so a product below 2^-1074 is
 // flushed to 0 (and below 2^-1022 loses bits): EvaluateScaled returns 0 and
 // EvaluateSignAndLog returns sign 0 and -inf, although the product is ±1e-800.
