@@ -21,8 +21,18 @@ models = os.environ["PISURF_MODELS_DIR"]
 two_spheres = os.path.join(models, "two_spheres_d0.9.pisurf")
 
 reader = PiSurfaceModelReader(FileName=two_spheres)
-check(reader.Resolution[0] if hasattr(reader.Resolution, "__getitem__") else reader.Resolution == 128,
-      "default resolution")
+
+# The XML defaults are the C++ defaults.
+from pisurfaces import vtkPiSurfaceModelReader, vtkPiSurfaceFunction
+cxx = vtkPiSurfaceModelReader()
+check(reader.Resolution == cxx.GetResolution(), "Resolution default")
+check(reader.OverrideBlending == int(cxx.GetOverrideBlending()), "OverrideBlending default")
+check(reader.Blending == cxx.GetBlending(), "Blending default")
+check(list(reader.Bounds) == list(cxx.GetBounds()), "Bounds default")
+function = Clip(Input=Wavelet(), ClipType="Pi Surface Function").ClipType
+cxx_function = vtkPiSurfaceFunction()
+check(function.Model == cxx_function.GetModel() and function.FileName == cxx_function.GetFileName(),
+      "Pi Surface Function defaults")
 reader.Resolution = 64
 mesh = servermanager.Fetch(reader)
 check(mesh.GetNumberOfCells() > 1000, "reader output has %d cells" % mesh.GetNumberOfCells())
@@ -76,6 +86,17 @@ slice_ = Slice(Input=wavelet, SliceType="Pi Surface Function")
 slice_.SliceType.Model = model
 slice_.UpdatePipeline()
 check(slice_.GetDataInformation().GetNumberOfCells() > 0, "slice by the Pi-surface")
+
+extract = ExtractCellsByRegion(Input=wavelet, IntersectWith="Pi Surface Function")
+extract.IntersectWith.Model = model
+extract.UpdatePipeline()
+extracted = extract.GetDataInformation().GetNumberOfCells()
+check(0 < extracted < cells, "extract cells by region: %d of %d" % (extracted, cells))
+
+# A bad model is an error, not a crash, and the clip keeps working on the last valid model.
+clip.ClipType.Model = '{"pisurf": 1, "blending": 0.25, "primitives": [{"type": "sphere", "radius": -1}]}'
+clip.UpdatePipeline()
+check(clip.GetDataInformation().GetNumberOfCells() == outside, "invalid model keeps the last valid one")
 
 print("%d failures" % failures)
 sys.exit(1 if failures else 0)
