@@ -57,21 +57,84 @@ void vtkPiFlyingEdges::ReportReferences(vtkGarbageCollector* collector)
 
 namespace
 {
-// Samples F on the grid, one row (fixed j, k) per work item.
+// Grid blocks of BlockCells³ cells are classified first; only points of blocks the
+// surface may cross are evaluated.
+constexpr int BlockCells = 8;
+
+struct BlockGrid
+{
+  int Count[3]; // blocks per axis
+  std::vector<signed char> Sign; // +1/−1: F has that sign on the whole block; 0: active
+
+  vtkIdType Index(int bx, int by, int bz) const
+  {
+    return (vtkIdType(bz) * this->Count[1] + by) * this->Count[0] + bx;
+  }
+};
+
+// PASS 1: interval bounds of F over each block.
+struct ClassifyBlocks
+{
+  const pisurf::ProductKernel* Kernel;
+  const int* Dims;
+  const double* Origin;
+  const double* Spacing;
+  BlockGrid* Blocks;
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    for (vtkIdType b = begin; b < end; ++b)
+    {
+      const int c[3] = { int(b % this->Blocks->Count[0]),
+        int((b / this->Blocks->Count[0]) % this->Blocks->Count[1]),
+        int(b / (vtkIdType(this->Blocks->Count[0]) * this->Blocks->Count[1])) };
+      double box[6];
+      for (int a = 0; a < 3; ++a)
+      {
+        const int i0 = c[a] * BlockCells, i1 = std::min(i0 + BlockCells, this->Dims[a] - 1);
+        box[2 * a] = this->Origin[a] + i0 * this->Spacing[a];
+        box[2 * a + 1] = this->Origin[a] + i1 * this->Spacing[a];
+      }
+      this->Blocks->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBox(box));
+    }
+  }
+};
+
+// PASS 2: samples F on the grid, one row (fixed j, k) per work item. Points that lie
+// only in blocks the surface cannot cross get ±1 (their sign is known); the others are
+// evaluated exactly, segment by segment, with the factors restricted to the row.
 struct SampleRows
 {
   const pisurf::ProductKernel* Kernel;
   const int* Dims;
   const double* Origin;
   const double* Spacing;
+  const BlockGrid* Blocks;
   double* Values;
   vtkPiFlyingEdges* Algorithm;
   std::atomic<bool>* Abort;
+
+  // The blocks along one axis that contain grid index i.
+  static int Containing(int i, int count, int out[2])
+  {
+    int n = 0;
+    if (i / BlockCells < count)
+    {
+      out[n++] = i / BlockCells;
+    }
+    if (i % BlockCells == 0 && i > 0)
+    {
+      out[n++] = i / BlockCells - 1;
+    }
+    return n;
+  }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
     const bool single = vtkSMPTools::GetSingleThread();
     const double step[3] = { this->Spacing[0], 0.0, 0.0 };
+    const int nx = this->Dims[0];
+    std::vector<signed char> sign(nx);
     for (vtkIdType row = begin; row < end; ++row)
     {
       if (single && (row - begin) % 64 == 0 && this->Algorithm->CheckAbort())
@@ -82,16 +145,54 @@ struct SampleRows
       {
         return;
       }
-      const vtkIdType j = row % this->Dims[1], k = row / this->Dims[1];
-      const double o[3] = { this->Origin[0], this->Origin[1] + j * this->Spacing[1],
-        this->Origin[2] + k * this->Spacing[2] };
-      double* v = this->Values + row * this->Dims[0];
-      this->Kernel->EvaluateLine(o, step, this->Dims[0], v);
-      // Compress to sign(F)·ln(1 + |F|): same signs and zero set, but finite differences
-      // between neighbours, so interpolated vertices stay strictly inside their edges.
-      for (int i = 0; i < this->Dims[0]; ++i)
+      const int j = static_cast<int>(row % this->Dims[1]);
+      const int k = static_cast<int>(row / this->Dims[1]);
+      int ys[2], zs[2], xs[2];
+      const int ny = Containing(j, this->Blocks->Count[1], ys);
+      const int nz = Containing(k, this->Blocks->Count[2], zs);
+      // sign[i]: the known sign of point i, or 0 if it must be evaluated.
+      for (int i = 0; i < nx; ++i)
       {
-        v[i] = std::copysign(std::log1p(std::fabs(v[i])), v[i]);
+        const int n = Containing(i, this->Blocks->Count[0], xs);
+        signed char s = 1;
+        for (int a = 0; a < n && s != 0; ++a)
+        {
+          for (int b = 0; b < ny && s != 0; ++b)
+          {
+            for (int c = 0; c < nz && s != 0; ++c)
+            {
+              const signed char bs = this->Blocks->Sign[this->Blocks->Index(xs[a], ys[b], zs[c])];
+              s = bs == 0 ? 0 : bs;
+            }
+          }
+        }
+        sign[i] = s;
+      }
+      double* v = this->Values + row * nx;
+      for (int i = 0; i < nx;)
+      {
+        if (sign[i] != 0)
+        {
+          v[i] = sign[i];
+          ++i;
+          continue;
+        }
+        int e = i;
+        while (e < nx && sign[e] == 0)
+        {
+          ++e;
+        }
+        const double o[3] = { this->Origin[0] + i * this->Spacing[0],
+          this->Origin[1] + j * this->Spacing[1], this->Origin[2] + k * this->Spacing[2] };
+        this->Kernel->EvaluateLine(o, step, e - i, v + i);
+        // Compress to sign(F)·ln(1 + |F|): same signs and zero set, but finite
+        // differences between neighbours, so interpolated vertices stay strictly
+        // inside their edges.
+        for (int m = i; m < e; ++m)
+        {
+          v[m] = std::copysign(std::log1p(std::fabs(v[m])), v[m]);
+        }
+        i = e;
       }
     }
   }
@@ -102,9 +203,10 @@ struct SampleRows
 //
 // Flying edges puts every vertex on a grid edge whose two samples have opposite signs;
 // the sign of F is exact (overflow-safe), so the edge brackets a root. The vertex is
-// moved to that root by the Illinois variant of regula falsi on the overflow-free
-// first-order distance F/|∇F| (bisection where that is infinite), which converges even
-// where F varies over thousands of orders of magnitude along the edge.
+// moved to that root by the Illinois variant of regula falsi on F (or, where F is
+// beyond 1e200 at an end of the edge, on the overflow-free sign(F)·ln(1 + |F|)), with
+// bisection where the secant leaves the bracket: it converges even where F varies over
+// thousands of orders of magnitude along the edge.
 struct VertexAttributes
 {
   const pisurf::ProductKernel* Kernel;
@@ -144,17 +246,29 @@ struct VertexAttributes
   // Moves p (world) to the root on the edge of the index-space vertex t.
   void Refine(const double t[3], double p[3]) const
   {
-    double a[3], b[3], n[3];
+    double a[3], b[3];
     if (!this->FindEdge(t, a, b))
     {
       return;
     }
-    double va = this->Kernel->EvaluateDistance(a, n);
-    double vb = this->Kernel->EvaluateDistance(b, n);
+    // F itself is nearly linear along a short edge, and cheapest; where it is beyond
+    // 1e200 at an end, its compressed form sign(F)·ln(1 + |F|) is used instead.
+    bool compressed = false;
+    auto phi = [&](const double x[3]) {
+      return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);
+    };
+    double va = phi(a), vb = phi(b);
+    if (!(std::fabs(va) < 1e200 && std::fabs(vb) < 1e200))
+    {
+      compressed = true;
+      va = phi(a);
+      vb = phi(b);
+    }
     if (!(va < 0 && vb > 0) && !(va > 0 && vb < 0))
     {
       return; // no bracket (a sample exactly zero): keep the interpolated vertex
     }
+    const double small = 1e-15 * std::max(std::fabs(va), std::fabs(vb));
     double s0 = 0, s1 = 1;
     int side = 0;
     const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
@@ -174,8 +288,8 @@ struct VertexAttributes
       {
         q[k] = a[k] + s * (b[k] - a[k]);
       }
-      const double v = this->Kernel->EvaluateDistance(q, n);
-      if (v == 0)
+      const double v = phi(q);
+      if (std::fabs(v) <= small)
       {
         s0 = s1 = s;
         break;
@@ -223,11 +337,13 @@ struct VertexAttributes
         this->Refine(t, p);
       }
       this->Points->SetPoint(i, p);
-      this->Kernel->EvaluateDistance(p, n);
+      double gradientNorm;
+      int nearest;
+      this->Kernel->EvaluateVertex(p, n, gradientNorm, nearest);
       const float nf[3] = { static_cast<float>(n[0]), static_cast<float>(n[1]),
         static_cast<float>(n[2]) };
       this->Normals->SetTypedTuple(i, nf);
-      this->Factor->SetValue(i, this->Kernel->NearestFactor(p));
+      this->Factor->SetValue(i, nearest);
     }
   }
 };
@@ -338,8 +454,17 @@ int vtkPiFlyingEdges::RequestData(
   values->SetName("F");
   values->SetNumberOfTuples(vtkIdType(dims[0]) * dims[1] * dims[2]);
   image->GetPointData()->SetScalars(values);
+  BlockGrid blocks;
+  for (int a = 0; a < 3; ++a)
+  {
+    blocks.Count[a] = std::max(1, (dims[a] - 1 + BlockCells - 1) / BlockCells);
+  }
+  blocks.Sign.assign(vtkIdType(blocks.Count[0]) * blocks.Count[1] * blocks.Count[2], 0);
+  ClassifyBlocks classify{ kernel.get(), dims, origin, spacing, &blocks };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(blocks.Sign.size()), classify);
   std::atomic<bool> abort{ false };
-  SampleRows sample{ kernel.get(), dims, origin, spacing, values->GetPointer(0), this, &abort };
+  SampleRows sample{ kernel.get(), dims, origin, spacing, &blocks, values->GetPointer(0), this,
+    &abort };
   vtkSMPTools::For(0, vtkIdType(dims[1]) * dims[2], sample);
   if (abort || this->CheckAbort())
   {

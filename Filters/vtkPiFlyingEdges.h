@@ -17,8 +17,8 @@
  *
  * With ProjectVertices (default on) each vertex is then moved to the exact root of F on
  * its grid edge: the edge's samples have opposite signs (the sign of F is exact), so
- * the root is bracketed, and regula falsi (Illinois) on the overflow-free first-order
- * distance F/|∇F|, with bisection as a fallback, finds it to 1e-13 of the model size,
+ * the root is bracketed, and regula falsi (Illinois) on F, or on the overflow-free
+ * sign(F)·ln(1 + |F|) where F is beyond 1e200, with bisection as a fallback, finds it to 1e-13 of the model size,
  * even where F spans thousands of orders of magnitude along the edge.
  *
  * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F)

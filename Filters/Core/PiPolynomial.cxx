@@ -61,10 +61,39 @@ void Polynomial3::AddTerm(double c, int i, int j, int k)
   {
     this->Terms.insert(it, m);
   }
+  this->Summarize();
+}
+
+void Polynomial3::Summarize()
+{
   this->Degree = -1;
   for (const auto& t : this->Terms)
   {
     this->Degree = std::max(this->Degree, t.I + t.J + t.K);
+  }
+  this->Quadric = this->Degree <= 2;
+  std::fill(this->Q, this->Q + 10, 0.0);
+  if (this->Quadric)
+  {
+    for (const auto& t : this->Terms)
+    {
+      int slot = 0;
+      const int key = t.I * 100 + t.J * 10 + t.K;
+      switch (key)
+      {
+        case 0: slot = 0; break;
+        case 100: slot = 1; break;
+        case 10: slot = 2; break;
+        case 1: slot = 3; break;
+        case 200: slot = 4; break;
+        case 20: slot = 5; break;
+        case 2: slot = 6; break;
+        case 110: slot = 7; break;
+        case 101: slot = 8; break;
+        default: slot = 9; break; // 011: yz
+      }
+      this->Q[slot] = t.Coefficient;
+    }
   }
 }
 
@@ -86,15 +115,14 @@ void Polynomial3::Finish()
     }
   }
   this->Terms.clear();
-  this->Degree = -1;
   for (const auto& t : merged)
   {
     if (t.Coefficient != 0.0)
     {
       this->Terms.push_back(t);
-      this->Degree = std::max(this->Degree, t.I + t.J + t.K);
     }
   }
+  this->Summarize();
 }
 
 double Polynomial3::GetCoefficient(int i, int j, int k) const
@@ -196,6 +224,13 @@ Polynomial3 Polynomial3::Pow(int n) const
 
 double Polynomial3::Evaluate(const double p[3]) const
 {
+  if (this->Quadric)
+  {
+    const double x = p[0], y = p[1], z = p[2];
+    const double* q = this->Q;
+    return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
+      z * (q[3] + q[6] * z);
+  }
   double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
   const int n = std::max(this->Degree, 0);
   Powers(p[0], n, px);
@@ -211,6 +246,16 @@ double Polynomial3::Evaluate(const double p[3]) const
 
 double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
 {
+  if (this->Quadric)
+  {
+    const double x = p[0], y = p[1], z = p[2];
+    const double* q = this->Q;
+    g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
+    g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
+    g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+    return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
+      z * (q[3] + q[6] * z);
+  }
   double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
   const int n = std::max(this->Degree, 0);
   Powers(p[0], n, px);
@@ -236,6 +281,59 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
     }
   }
   return v;
+}
+
+namespace
+{
+// [a, b]^n with exact handling of even powers.
+Interval PowerInterval(const Interval& x, int n)
+{
+  if (n == 0)
+  {
+    return { 1.0, 1.0 };
+  }
+  const double a = std::pow(x.Lo, n), b = std::pow(x.Hi, n);
+  if (n % 2 == 1 || x.Lo >= 0)
+  {
+    return { std::min(a, b), std::max(a, b) };
+  }
+  if (x.Hi <= 0)
+  {
+    return { std::min(a, b), std::max(a, b) };
+  }
+  return { 0.0, std::max(a, b) };
+}
+
+Interval Multiply(const Interval& x, const Interval& y)
+{
+  const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
+  return { std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+}
+}
+
+Interval Polynomial3::EvaluateInterval(const Interval box[3]) const
+{
+  Interval px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  const int n = std::max(this->Degree, 0);
+  for (int k = 0; k <= n; ++k)
+  {
+    px[k] = PowerInterval(box[0], k);
+    py[k] = PowerInterval(box[1], k);
+    pz[k] = PowerInterval(box[2], k);
+  }
+  Interval sum{ 0.0, 0.0 };
+  for (const auto& t : this->Terms)
+  {
+    const Interval m = Multiply(Multiply(px[t.I], py[t.J]), pz[t.K]);
+    const Interval c = t.Coefficient >= 0
+      ? Interval{ t.Coefficient * m.Lo, t.Coefficient * m.Hi }
+      : Interval{ t.Coefficient * m.Hi, t.Coefficient * m.Lo };
+    sum.Lo += c.Lo;
+    sum.Hi += c.Hi;
+  }
+  // Rounding: widen by a relative ulp-scale margin so the enclosure stays safe.
+  const double slack = 1e-12 * (std::fabs(sum.Lo) + std::fabs(sum.Hi)) + 1e-300;
+  return { sum.Lo - slack, sum.Hi + slack };
 }
 
 std::vector<double> Polynomial3::RestrictToLine(const double o[3], const double d[3]) const

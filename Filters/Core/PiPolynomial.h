@@ -20,6 +20,13 @@ namespace pisurf
 /// (a degree-64 trivariate polynomial already has ~48k monomials).
 constexpr int MaxDegree = 64;
 
+/// A closed interval [Lo, Hi] of reals.
+struct Interval
+{
+  double Lo, Hi;
+  bool Contains(double v) const { return this->Lo <= v && v <= this->Hi; }
+};
+
 struct Monomial
 {
   double Coefficient;
@@ -59,6 +66,9 @@ public:
   double Evaluate(const double p[3]) const;
   /// Value and gradient at p. Cost: O(degree + 3·terms).
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// An enclosure of P over the box x ∈ box[0], y ∈ box[1], z ∈ box[2] (term-wise
+  /// interval arithmetic; exact powers, so squares are never negative). Cost: O(terms).
+  Interval EvaluateInterval(const Interval box[3]) const;
   /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
   /// The same into out[0..degree] without allocating (hot path of grid sampling).
@@ -70,9 +80,14 @@ public:
   std::string ToString() const;
 
 private:
-  void Finish(); // sorts, merges, drops zeros, recomputes the degree
+  void Finish();        // sorts, merges, drops zeros, then Summarize()
+  void Summarize();     // recomputes the degree and the quadric fast path
   std::vector<Monomial> Terms;
   int Degree = -1; // -1 for the zero polynomial
+  // Degree <= 2 (spheres, cylinders, quadrics: most factors) is evaluated from dense
+  // coefficients: 1, x, y, z, x², y², z², xy, xz, yz.
+  bool Quadric = true;
+  double Q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
 };
 
 /// Horner evaluation of c[0] + c[1]·t + ... .

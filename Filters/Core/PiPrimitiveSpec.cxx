@@ -157,6 +157,24 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
   return v;
 }
 
+Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
+{
+  // The local box of the affine image: centre mapped, half extents through |A|.
+  Interval local[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    double c = this->B[i], h = 0.0;
+    for (int j = 0; j < 3; ++j)
+    {
+      c += this->A[i][j] * 0.5 * (box[2 * j] + box[2 * j + 1]);
+      h += std::fabs(this->A[i][j]) * 0.5 * (box[2 * j + 1] - box[2 * j]);
+    }
+    h += 1e-15 * (std::fabs(c) + h);
+    local[i] = { c - h, c + h };
+  }
+  return this->Poly.EvaluateInterval(local);
+}
+
 std::vector<double> PolynomialFactor::RestrictToLine(const double o[3], const double d[3]) const
 {
   std::vector<double> r(std::max(this->Poly.GetDegree(), 0) + 1);

@@ -107,6 +107,8 @@ struct PolynomialFactor
     return this->Poly.Evaluate(q);
   }
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// An enclosure of f over the axis-aligned world box [b0,b1]x[b2,b3]x[b4,b5].
+  Interval EvaluateInterval(const double box[6]) const;
   /// Coefficients of t -> f(o + t·d).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
   /// The same into out[0..degree] without allocating.

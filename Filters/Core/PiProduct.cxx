@@ -106,7 +106,7 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
 }
 
-void ProductKernel::Accumulate(double& m, long& e, double f)
+inline void ProductKernel::Accumulate(double& m, long& e, double f)
 {
   const double af = std::fabs(f);
   if ((af > Big || af < Small) && af != 0.0 && std::isfinite(af))
@@ -224,6 +224,64 @@ double ProductKernel::EvaluateDistance(const double p[3], double normal[3]) cons
     normal[k] = s.G[k] / gn;
   }
   return Fs / gn;
+}
+
+double ProductKernel::EvaluateCompressed(const double p[3]) const
+{
+  double m = 1.0;
+  long e = 0;
+  for (const Factor& f : this->Factors)
+  {
+    Accumulate(m, e, f.Evaluate(p));
+  }
+  int ex;
+  if (m != 0.0)
+  {
+    std::frexp(m, &ex);
+    if (std::labs(e + ex) < 960)
+    {
+      const double F = std::ldexp(m, static_cast<int>(e)) - this->Blending;
+      return std::copysign(std::log1p(std::fabs(F)), F);
+    }
+  }
+  double fm;
+  long fe;
+  ScaledMinus(m, e, this->Blending, fm, fe);
+  if (fm == 0.0)
+  {
+    return 0.0;
+  }
+  // ln(1 + |F|) = ln|F| + ln(1 + 1/|F|); beyond the double range the second term is 0.
+  const double logAbs = std::log(std::fabs(fm)) + static_cast<double>(fe) * std::log(2.0);
+  const double value = logAbs > 700 ? logAbs : std::log1p(std::exp(logAbs));
+  return std::copysign(value, fm);
+}
+
+void ProductKernel::EvaluateVertex(
+  const double p[3], double normal[3], double& gradientNorm, int& nearest) const
+{
+  ScaledProduct s;
+  double gi[3];
+  double best = std::numeric_limits<double>::infinity();
+  nearest = -1;
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    const double fi = this->Factors[k].EvaluateWithGradient(p, gi);
+    const double gn = std::sqrt(gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2]);
+    const double d = gn > 0 ? std::fabs(fi) / gn : (fi == 0 ? 0.0 : std::fabs(fi) * 1e300);
+    if (nearest < 0 || d < best)
+    {
+      nearest = static_cast<int>(k);
+      best = d;
+    }
+    s.Multiply(fi, gi);
+  }
+  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
+  gradientNorm = SafeLdexp(gn, s.E);
+  for (int k = 0; k < 3; ++k)
+  {
+    normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;
+  }
 }
 
 void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& exponent) const
@@ -357,6 +415,62 @@ void ProductKernel::EvaluateLine(
       values[start + i] = this->Finish(m[i], e[i]);
     }
   }
+}
+
+int ProductKernel::ClassifyBox(const double box[6]) const
+{
+  if (!this->AllPolynomial)
+  {
+    return 0;
+  }
+  // |P| ∈ [exp(logMin), exp(logMax)]; sign fixed unless a factor spans zero.
+  double logMin = 0.0, logMax = 0.0;
+  int sign = 1;
+  bool spansZero = false;
+  for (const Factor& f : this->Factors)
+  {
+    const Interval v = f.Polynomial.EvaluateInterval(box);
+    if (!(v.Lo <= v.Hi)) // NaN
+    {
+      return 0;
+    }
+    const double maxAbs = std::max(std::fabs(v.Lo), std::fabs(v.Hi));
+    logMax += std::log(maxAbs);
+    if (v.Lo > 0 || v.Hi < 0)
+    {
+      logMin += std::log(std::min(std::fabs(v.Lo), std::fabs(v.Hi)));
+      sign = v.Lo > 0 ? sign : -sign;
+    }
+    else
+    {
+      spansZero = true;
+    }
+  }
+  const double r = this->Blending;
+  if (spansZero)
+  {
+    // P ∈ [−|P|max, |P|max] (or half of it): excludes r only if it cannot reach |r|.
+    if (r != 0.0 && logMax < std::log(std::fabs(r)) - 1e-9)
+    {
+      return r > 0 ? -1 : 1;
+    }
+    return 0;
+  }
+  // P has sign `sign` and |P| ∈ [e^logMin, e^logMax].
+  if (r == 0.0 || (r > 0) != (sign > 0))
+  {
+    return sign; // F = P − r has the sign of P
+  }
+  const double logR = std::log(std::fabs(r));
+  if (logMin > logR + 1e-9)
+  {
+    return sign; // |P| > |r|
+  }
+  if (logMax < logR - 1e-9)
+  {
+    return -sign; // |P| < |r|
+  }
+  return 0;
 }
 
 int ProductKernel::NearestFactor(const double p[3]) const

@@ -71,6 +71,12 @@ public:
   /// ∇F/|∇F|, computed from the scaled product so that neither overflows however large
   /// the product is. Where ∇F = 0 the normal is 0 and the distance ±inf (or 0 on F = 0).
   double EvaluateDistance(const double p[3], double normal[3]) const;
+  /// sign(F)·ln(1 + |F|) without overflow: the same signs and zero set as F, nearly F
+  /// where |F| is small. Value only (no gradient): the cheap function for root finding.
+  double EvaluateCompressed(const double p[3]) const;
+  /// At a vertex, in one pass over the factors: the unit normal ∇F/|∇F| (0 where
+  /// ∇F = 0), |∇F| (clamped to DBL_MAX) and the nearest factor (see NearestFactor).
+  void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.
@@ -82,6 +88,12 @@ public:
   /// F at the n points origin + i·step (a grid row). Polynomial factors are restricted
   /// to the line once and evaluated by Horner's rule: cost per point O(Σ deg f_i).
   void EvaluateLine(const double origin[3], const double step[3], int n, double* values) const;
+
+  /// Over the box [b0,b1]x[b2,b3]x[b4,b5]: +1 if F > 0 everywhere, −1 if F < 0
+  /// everywhere, 0 if the surface may cross it (or a factor is not a polynomial). From
+  /// interval enclosures of the factors, combined in sign and log-magnitude, so it
+  /// never overflows. Cost: O(Σ terms).
+  int ClassifyBox(const double box[6]) const;
 
   /// The factor with the smallest first-order distance |f_i|/|∇f_i| to its own zero set
   /// at p (the primitive whose patch p lies on); −1 without factors.
