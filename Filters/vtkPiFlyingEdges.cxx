@@ -8,23 +8,28 @@
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
 #include "vtkGarbageCollector.h"
-#include "vtkImageData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMarchingCubesTriangleCases.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
 #include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
 #include <cmath>
+#include <deque>
+#include <memory>
+#include <vector>
 
 vtkStandardNewMacro(vtkPiFlyingEdges);
 vtkCxxSetObjectMacro(vtkPiFlyingEdges, PiSurface, vtkPiSurface);
@@ -57,68 +62,56 @@ void vtkPiFlyingEdges::ReportReferences(vtkGarbageCollector* collector)
 
 namespace
 {
-// Grid blocks of BlockCells³ cells are classified first; only points of blocks the
-// surface may cross are evaluated.
+// The grid is cut into blocks of BlockCells³ cells. A block whose interval bound
+// excludes the surface is "skipped": its sign is known and nothing in it is evaluated
+// or contoured. The others are "active".
 constexpr int BlockCells = 8;
+constexpr int BlockPoints = BlockCells + 1;
+constexpr double ValueLimit = 1e300;
 
-struct BlockGrid
+// Marching-cubes corner offsets and edges (corner pairs), VTK's hexahedron order, as
+// used with vtkMarchingCubesTriangleCases.
+constexpr int Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
+  { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+constexpr int Edge[12][2] = { { 0, 1 }, { 1, 2 }, { 3, 2 }, { 0, 3 }, { 4, 5 }, { 5, 6 },
+  { 7, 6 }, { 4, 7 }, { 0, 4 }, { 1, 5 }, { 3, 7 }, { 2, 6 } };
+
+struct Grid
 {
-  int Count[3]; // blocks per axis
-  std::vector<signed char> Sign; // +1/−1: F has that sign on the whole block; 0: active
+  int Dims[3];
+  double Origin[3];
+  double Spacing[3];
+  int Count[3];                  // blocks per axis
+  std::vector<signed char> Sign; // per block: +1/−1 skipped with that sign, 0 active
+  std::vector<int> Active;       // active block ids
+  std::vector<int> Slot;         // per block: index in Active, or −1
+  std::unique_ptr<double[]> Values; // per active block: BlockPoints³ values of F
 
-  vtkIdType Index(int bx, int by, int bz) const
+  vtkIdType BlockId(int bx, int by, int bz) const
   {
     return (vtkIdType(bz) * this->Count[1] + by) * this->Count[0] + bx;
   }
-};
-
-// PASS 1: interval bounds of F over each block.
-struct ClassifyBlocks
-{
-  const pisurf::ProductKernel* Kernel;
-  const int* Dims;
-  const double* Origin;
-  const double* Spacing;
-  BlockGrid* Blocks;
-
-  void operator()(vtkIdType begin, vtkIdType end)
+  vtkIdType PointId(int i, int j, int k) const
   {
-    for (vtkIdType b = begin; b < end; ++b)
-    {
-      const int c[3] = { int(b % this->Blocks->Count[0]),
-        int((b / this->Blocks->Count[0]) % this->Blocks->Count[1]),
-        int(b / (vtkIdType(this->Blocks->Count[0]) * this->Blocks->Count[1])) };
-      double box[6];
-      for (int a = 0; a < 3; ++a)
-      {
-        const int i0 = c[a] * BlockCells, i1 = std::min(i0 + BlockCells, this->Dims[a] - 1);
-        box[2 * a] = this->Origin[a] + i0 * this->Spacing[a];
-        box[2 * a + 1] = this->Origin[a] + i1 * this->Spacing[a];
-      }
-      this->Blocks->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBox(box));
-    }
+    return (vtkIdType(k) * this->Dims[1] + j) * this->Dims[0] + i;
   }
-};
-
-// PASS 2: samples F on the grid, one row (fixed j, k) per work item. Points that lie
-// only in blocks the surface cannot cross get ±1 (their sign is known); the others are
-// evaluated exactly, segment by segment, with the factors restricted to the row.
-struct SampleRows
-{
-  const pisurf::ProductKernel* Kernel;
-  const int* Dims;
-  const double* Origin;
-  const double* Spacing;
-  const BlockGrid* Blocks;
-  double* Values;
-  vtkPiFlyingEdges* Algorithm;
-  std::atomic<bool>* Abort;
-
-  // The blocks along one axis that contain grid index i.
-  static int Containing(int i, int count, int out[2])
+  void BlockCoordinates(vtkIdType b, int c[3]) const
+  {
+    c[0] = static_cast<int>(b % this->Count[0]);
+    c[1] = static_cast<int>((b / this->Count[0]) % this->Count[1]);
+    c[2] = static_cast<int>(b / (vtkIdType(this->Count[0]) * this->Count[1]));
+  }
+  // Cells [first, last) of block c along axis a.
+  int First(const int c[3], int a) const { return c[a] * BlockCells; }
+  int Last(const int c[3], int a) const
+  {
+    return std::min(c[a] * BlockCells + BlockCells, this->Dims[a] - 1);
+  }
+  // Blocks along one axis whose point range contains index i.
+  int Containing(int i, int a, int out[2]) const
   {
     int n = 0;
-    if (i / BlockCells < count)
+    if (i / BlockCells < this->Count[a])
     {
       out[n++] = i / BlockCells;
     }
@@ -128,16 +121,108 @@ struct SampleRows
     }
     return n;
   }
+  // A skipped block containing point (i, j, k), or −1.
+  vtkIdType SkippedBlockOf(int i, int j, int k) const
+  {
+    int xs[2], ys[2], zs[2];
+    const int nx = this->Containing(i, 0, xs), ny = this->Containing(j, 1, ys),
+              nz = this->Containing(k, 2, zs);
+    for (int a = 0; a < nx; ++a)
+      for (int b = 0; b < ny; ++b)
+        for (int c = 0; c < nz; ++c)
+        {
+          const vtkIdType id = this->BlockId(xs[a], ys[b], zs[c]);
+          if (this->Sign[id] != 0)
+          {
+            return id;
+          }
+        }
+    return -1;
+  }
+  // The stored value of a point of some active block (the caller knows it has one).
+  double ActiveValue(int i, int j, int k) const
+  {
+    int xs[2], ys[2], zs[2];
+    this->Containing(i, 0, xs);
+    this->Containing(j, 1, ys);
+    this->Containing(k, 2, zs);
+    const int c[3] = { xs[0], ys[0], zs[0] };
+    const int slot = this->Slot[this->BlockId(c[0], c[1], c[2])];
+    return this->Values[size_t(slot) * BlockPoints * BlockPoints * BlockPoints +
+      size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints +
+      (i - c[0] * BlockCells)];
+  }
+};
+
+// PASS 1: interval bounds of F over each block.
+struct ClassifyBlocks
+{
+  const pisurf::ProductKernel* Kernel;
+  Grid* G;
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    for (vtkIdType b = begin; b < end; ++b)
+    {
+      int c[3];
+      this->G->BlockCoordinates(b, c);
+      double box[6];
+      for (int a = 0; a < 3; ++a)
+      {
+        box[2 * a] = this->G->Origin[a] + this->G->First(c, a) * this->G->Spacing[a];
+        box[2 * a + 1] = this->G->Origin[a] + this->G->Last(c, a) * this->G->Spacing[a];
+      }
+      this->G->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBox(box));
+    }
+  }
+};
+
+// PASS 2: the rows (j, k) that cross an active block get their factors restricted once,
+// about the middle of the whole row, so every point evaluates identically whichever
+// block asks for it (no cracks between blocks).
+struct RestrictRows
+{
+  const pisurf::ProductKernel* Kernel;
+  const Grid* G;
+  const std::vector<vtkIdType>* Rows;
+  std::vector<double>* Coefficients;
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    const size_t n = this->Kernel->GetLineCoefficientCount();
+    const double step[3] = { this->G->Spacing[0], 0.0, 0.0 };
+    const double mid = 0.5 * (this->G->Dims[0] - 1);
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      const vtkIdType row = (*this->Rows)[r];
+      const int j = static_cast<int>(row % this->G->Dims[1]);
+      const int k = static_cast<int>(row / this->G->Dims[1]);
+      const double o[3] = { this->G->Origin[0] + mid * this->G->Spacing[0],
+        this->G->Origin[1] + j * this->G->Spacing[1], this->G->Origin[2] + k * this->G->Spacing[2] };
+      this->Kernel->RestrictLine(o, step, this->Coefficients->data() + r * n);
+    }
+  }
+};
+
+// PASS 3: the points of each active block: F, clamped to ±ValueLimit so that differences
+// of neighbours stay finite (the sign of F is exact, whatever its magnitude).
+struct SampleBlocks
+{
+  const pisurf::ProductKernel* Kernel;
+  Grid* G;
+  const std::vector<vtkIdType>* RowIndex; // per row (j, k): its index in the coefficients
+  const std::vector<double>* Coefficients;
+  vtkPiFlyingEdges* Algorithm;
+  std::atomic<bool>* Abort;
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
     const bool single = vtkSMPTools::GetSingleThread();
-    const double step[3] = { this->Spacing[0], 0.0, 0.0 };
-    const int nx = this->Dims[0];
-    std::vector<signed char> sign(nx);
-    for (vtkIdType row = begin; row < end; ++row)
+    const size_t n = this->Kernel->GetLineCoefficientCount();
+    const double mid = 0.5 * (this->G->Dims[0] - 1);
+    for (vtkIdType s = begin; s < end; ++s)
     {
-      if (single && (row - begin) % 64 == 0 && this->Algorithm->CheckAbort())
+      if (single && this->Algorithm->CheckAbort())
       {
         *this->Abort = true;
       }
@@ -145,119 +230,390 @@ struct SampleRows
       {
         return;
       }
-      const int j = static_cast<int>(row % this->Dims[1]);
-      const int k = static_cast<int>(row / this->Dims[1]);
-      int ys[2], zs[2], xs[2];
-      const int ny = Containing(j, this->Blocks->Count[1], ys);
-      const int nz = Containing(k, this->Blocks->Count[2], zs);
-      // sign[i]: the known sign of point i, or 0 if it must be evaluated.
-      for (int i = 0; i < nx; ++i)
+      int c[3];
+      this->G->BlockCoordinates(this->G->Active[s], c);
+      double* v = this->G->Values.get() + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
+      for (int k = this->G->First(c, 2); k <= this->G->Last(c, 2); ++k)
       {
-        const int n = Containing(i, this->Blocks->Count[0], xs);
-        signed char s = 1;
-        for (int a = 0; a < n && s != 0; ++a)
+        for (int j = this->G->First(c, 1); j <= this->G->Last(c, 1); ++j)
         {
-          for (int b = 0; b < ny && s != 0; ++b)
+          const double* coefficients =
+            this->Coefficients->data() + (*this->RowIndex)[vtkIdType(k) * this->G->Dims[1] + j] * n;
+          double* out = v + size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) *
+              BlockPoints;
+          for (int i = this->G->First(c, 0); i <= this->G->Last(c, 0); ++i)
           {
-            for (int c = 0; c < nz && s != 0; ++c)
-            {
-              const signed char bs = this->Blocks->Sign[this->Blocks->Index(xs[a], ys[b], zs[c])];
-              s = bs == 0 ? 0 : bs;
-            }
+            const double p[3] = { this->G->Origin[0] + i * this->G->Spacing[0],
+              this->G->Origin[1] + j * this->G->Spacing[1],
+              this->G->Origin[2] + k * this->G->Spacing[2] };
+            const double F = this->Kernel->EvaluateRestricted(coefficients, i - mid, p);
+            out[i - c[0] * BlockCells] = std::max(-ValueLimit, std::min(ValueLimit, F));
           }
         }
-        sign[i] = s;
-      }
-      double* v = this->Values + row * nx;
-      for (int i = 0; i < nx;)
-      {
-        if (sign[i] != 0)
-        {
-          v[i] = sign[i];
-          ++i;
-          continue;
-        }
-        int e = i;
-        while (e < nx && sign[e] == 0)
-        {
-          ++e;
-        }
-        const double o[3] = { this->Origin[0] + i * this->Spacing[0],
-          this->Origin[1] + j * this->Spacing[1], this->Origin[2] + k * this->Spacing[2] };
-        this->Kernel->EvaluateLine(o, step, e - i, v + i);
-        // Compress to sign(F)·ln(1 + |F|): same signs and zero set, but finite
-        // differences between neighbours, so interpolated vertices stay strictly
-        // inside their edges.
-        for (int m = i; m < e; ++m)
-        {
-          v[m] = std::copysign(std::log1p(std::fabs(v[m])), v[m]);
-        }
-        i = e;
       }
     }
   }
 };
 
-// Moves each vertex onto F = 0 (optional), then takes the exact normal and the
-// nearest factor there.
-//
-// Flying edges puts every vertex on a grid edge whose two samples have opposite signs;
-// the sign of F is exact (overflow-safe), so the edge brackets a root. The vertex is
-// moved to that root by the Illinois variant of regula falsi on F (or, where F is
-// beyond 1e200 at an end of the edge, on the overflow-free sign(F)·ln(1 + |F|)), with
-// bisection where the secant leaves the bracket: it converges even where F varies over
-// thousands of orders of magnitude along the edge.
-struct VertexAttributes
+// The outer envelope: which points are connected to the boundary of the grid through
+// points of the outside sign. Skipped blocks are handled whole.
+class Envelope
 {
-  const pisurf::ProductKernel* Kernel;
-  vtkPoints* IndexPoints; // flying edges' vertices, in grid index coordinates
-  vtkPoints* Points;      // the output vertices, in world coordinates (double)
-  vtkFloatArray* Normals;
-  vtkIntArray* Factor;
-  bool Project;
-  const double* Origin;
-  const double* Spacing;
-  double Tolerance; // stop when the bracket is shorter than this
-
-  // The grid edge [a, b] (world coordinates) of a vertex given in index coordinates:
-  // flying edges ran on a unit grid, where on-grid coordinates are exact integers even
-  // in float. False if the vertex is a grid point.
-  bool FindEdge(const double t[3], double a[3], double b[3]) const
+public:
+  Envelope(const Grid& g, int outside)
+    : G(g)
+    , Outside(outside)
+    , BlockReached(g.Sign.size(), 0)
+    , PointReached(size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2], 0)
   {
-    int offAxis = -1;
-    for (int k = 0; k < 3; ++k)
-    {
-      const double lo = std::floor(t[k]);
-      a[k] = this->Origin[k] + lo * this->Spacing[k];
-      b[k] = a[k];
-      if (t[k] != lo)
-      {
-        if (offAxis >= 0)
-        {
-          return false;
-        }
-        offAxis = k;
-        b[k] = this->Origin[k] + (lo + 1) * this->Spacing[k];
-      }
-    }
-    return offAxis >= 0;
   }
 
-  // Moves p (world) to the root on the edge of the index-space vertex t.
-  void Refine(const double t[3], double p[3]) const
+  void Flood()
   {
-    double a[3], b[3];
-    if (!this->FindEdge(t, a, b))
+    const int* d = this->G.Dims;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int u = (a + 1) % 3, w = (a + 2) % 3;
+      for (int side = 0; side < 2; ++side)
+        for (int p = 0; p < d[u]; ++p)
+          for (int q = 0; q < d[w]; ++q)
+          {
+            int idx[3];
+            idx[a] = side ? d[a] - 1 : 0;
+            idx[u] = p;
+            idx[w] = q;
+            this->Visit(idx[0], idx[1], idx[2]);
+          }
+    }
+    while (!this->BlockQueue.empty() || !this->PointQueue.empty())
+    {
+      while (!this->PointQueue.empty())
+      {
+        const vtkIdType p = this->PointQueue.front();
+        this->PointQueue.pop_front();
+        const int i = static_cast<int>(p % d[0]);
+        const int j = static_cast<int>((p / d[0]) % d[1]);
+        const int k = static_cast<int>(p / (vtkIdType(d[0]) * d[1]));
+        this->Visit(i - 1, j, k);
+        this->Visit(i + 1, j, k);
+        this->Visit(i, j - 1, k);
+        this->Visit(i, j + 1, k);
+        this->Visit(i, j, k - 1);
+        this->Visit(i, j, k + 1);
+      }
+      if (!this->BlockQueue.empty())
+      {
+        const vtkIdType b = this->BlockQueue.front();
+        this->BlockQueue.pop_front();
+        this->ExpandBlock(b);
+      }
+    }
+  }
+
+  /// The sign the contouring sees: the outside sign where connected to the boundary,
+  /// the other sign everywhere else.
+  int Sign(int i, int j, int k) const
+  {
+    const vtkIdType b = this->G.SkippedBlockOf(i, j, k);
+    const bool reached =
+      b >= 0 ? this->BlockReached[b] != 0 : this->PointReached[this->G.PointId(i, j, k)] != 0;
+    return reached ? this->Outside : -this->Outside;
+  }
+
+private:
+  void Visit(int i, int j, int k)
+  {
+    const int* d = this->G.Dims;
+    if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2])
     {
       return;
     }
-    // F itself is nearly linear along a short edge, and cheapest; where it is beyond
-    // 1e200 at an end, its compressed form sign(F)·ln(1 + |F|) is used instead.
+    int xs[2], ys[2], zs[2];
+    const int nx = this->G.Containing(i, 0, xs), ny = this->G.Containing(j, 1, ys),
+              nz = this->G.Containing(k, 2, zs);
+    bool skipped = false;
+    for (int a = 0; a < nx; ++a)
+      for (int b = 0; b < ny; ++b)
+        for (int c = 0; c < nz; ++c)
+        {
+          const vtkIdType id = this->G.BlockId(xs[a], ys[b], zs[c]);
+          if (this->G.Sign[id] != 0)
+          {
+            skipped = true;
+            if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
+            {
+              this->BlockReached[id] = 1;
+              this->BlockQueue.push_back(id);
+            }
+          }
+        }
+    if (skipped)
+    {
+      return;
+    }
+    const vtkIdType p = this->G.PointId(i, j, k);
+    if (this->PointReached[p])
+    {
+      return;
+    }
+    const double v = this->G.ActiveValue(i, j, k);
+    if ((v >= 0 ? 1 : -1) == this->Outside)
+    {
+      this->PointReached[p] = 1;
+      this->PointQueue.push_back(p);
+    }
+  }
+
+  // A reached skipped block: its neighbours that share points with it (26) are reached
+  // if skipped with the same sign; into active neighbours, step one point off each face.
+  void ExpandBlock(vtkIdType b)
+  {
+    int c[3];
+    this->G.BlockCoordinates(b, c);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int n[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
+          if ((dx == 0 && dy == 0 && dz == 0) || n[0] < 0 || n[1] < 0 || n[2] < 0 ||
+            n[0] >= this->G.Count[0] || n[1] >= this->G.Count[1] || n[2] >= this->G.Count[2])
+          {
+            continue;
+          }
+          const vtkIdType id = this->G.BlockId(n[0], n[1], n[2]);
+          if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
+          {
+            this->BlockReached[id] = 1;
+            this->BlockQueue.push_back(id);
+          }
+        }
+    // Faces towards active blocks: the points just outside this block.
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        int n[3] = { c[0], c[1], c[2] };
+        n[a] += side ? 1 : -1;
+        if (n[a] < 0 || n[a] >= this->G.Count[a] || this->G.Sign[this->G.BlockId(n[0], n[1], n[2])] != 0)
+        {
+          continue;
+        }
+        const int u = (a + 1) % 3, w = (a + 2) % 3;
+        const int plane = side ? this->G.Last(c, a) + 1 : this->G.First(c, a) - 1;
+        for (int p = this->G.First(c, u); p <= this->G.Last(c, u); ++p)
+          for (int q = this->G.First(c, w); q <= this->G.Last(c, w); ++q)
+          {
+            int idx[3];
+            idx[a] = plane;
+            idx[u] = p;
+            idx[w] = q;
+            this->Visit(idx[0], idx[1], idx[2]);
+          }
+      }
+    }
+  }
+
+  const Grid& G;
+  int Outside;
+  std::vector<char> BlockReached;
+  std::vector<char> PointReached;
+  std::deque<vtkIdType> BlockQueue;
+  std::deque<vtkIdType> PointQueue;
+};
+
+// PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge
+// belongs to the block that holds its lower end point (half-open ranges, closed at the
+// end of the grid), which numbers its vertex; triangles then look their edges' vertices
+// up in the owner's table. Mode Count counts both, Edges writes the edge tables and the
+// vertices, Triangles (after all tables exist) writes the triangles.
+struct Contour
+{
+  enum Mode
+  {
+    Count,
+    Edges,
+    Triangles
+  };
+  const Grid* G;
+  const Envelope* Outer; // null: plain signs
+  vtkMarchingCubesTriangleCases* Cases;
+  // Per vertex, ordered by block and then by this key: axis·BlockCells³ + the local index
+  // of the edge's lower end point. A block's vertices are [VertexCount[s], [s + 1]).
+  unsigned short* EdgeKey;
+  std::vector<vtkIdType>* VertexCount;   // per active block: count, then first id
+  std::vector<vtkIdType>* TriangleCount; // per active block: count, then first index
+  std::vector<vtkIdType>* VertexEdge;    // per vertex: point id · 3 + axis
+  std::vector<double>* VertexT;          // per vertex: crossing parameter along the edge
+  std::vector<double>* VertexEnds;       // per vertex: F at the edge's two end points
+  vtkIdType* TriangleIds;
+  Mode Pass = Count;
+  signed char* Signs; // per active block: the signs the contouring sees (Count fills them)
+
+  static constexpr int Points = BlockPoints * BlockPoints * BlockPoints;
+
+  static int Local(int li, int lj, int lk) { return (lk * BlockPoints + lj) * BlockPoints + li; }
+  static unsigned short Key(int axis, int li, int lj, int lk)
+  {
+    return static_cast<unsigned short>(
+      ((axis * BlockCells + lk) * BlockCells + lj) * BlockCells + li);
+  }
+
+  // The vertex id of edge (i, j, k, axis): a binary search among its owner's vertices.
+  vtkIdType VertexOf(int i, int j, int k, int axis) const
+  {
+    const int c[3] = { i / BlockCells, j / BlockCells, k / BlockCells };
+    const int slot = this->G->Slot[this->G->BlockId(c[0], c[1], c[2])];
+    const unsigned short key =
+      Key(axis, i - c[0] * BlockCells, j - c[1] * BlockCells, k - c[2] * BlockCells);
+    const unsigned short* first = this->EdgeKey + (*this->VertexCount)[slot];
+    const unsigned short* last = this->EdgeKey + (*this->VertexCount)[slot + 1];
+    return std::lower_bound(first, last, key) - this->EdgeKey;
+  }
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    const int* d = this->G->Dims;
+    for (vtkIdType s = begin; s < end; ++s)
+    {
+      int c[3];
+      this->G->BlockCoordinates(this->G->Active[s], c);
+      const double* v = this->G->Values.get() + size_t(s) * Points;
+      const int f[3] = { this->G->First(c, 0), this->G->First(c, 1), this->G->First(c, 2) };
+      const int l[3] = { this->G->Last(c, 0), this->G->Last(c, 1), this->G->Last(c, 2) };
+      signed char* sign = this->Signs + size_t(s) * Points;
+      if (this->Pass == Count)
+      {
+        // The signs the contouring sees, once per point of the block.
+        for (int k = f[2]; k <= l[2]; ++k)
+          for (int j = f[1]; j <= l[1]; ++j)
+            for (int i = f[0]; i <= l[0]; ++i)
+            {
+              const int q = Local(i - f[0], j - f[1], k - f[2]);
+              sign[q] = static_cast<signed char>(
+                this->Outer ? this->Outer->Sign(i, j, k) : (v[q] >= 0 ? 1 : -1));
+            }
+      }
+      vtkIdType vertex = this->Pass == Count ? 0 : (*this->VertexCount)[s];
+      vtkIdType triangle = this->Pass == Count ? 0 : (*this->TriangleCount)[s];
+      if (this->Pass != Triangles)
+      {
+        // Owned lower end points: local indices 0..BlockCells−1 (the blocks are laid out
+        // so that the grid's last point plane falls inside the last block).
+        int hi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          hi[a] = std::min(l[a], f[a] + BlockCells - 1);
+        }
+        // Axis outermost, so that the keys come out sorted (VertexOf searches them).
+        for (int axis = 0; axis < 3; ++axis)
+          for (int k = f[2]; k <= hi[2]; ++k)
+            for (int j = f[1]; j <= hi[1]; ++j)
+              for (int i = f[0]; i <= hi[0]; ++i)
+              {
+                const int q0 = Local(i - f[0], j - f[1], k - f[2]);
+                int n[3] = { i - f[0], j - f[1], k - f[2] };
+                if (++n[axis] + f[axis] > l[axis])
+                {
+                  continue; // beyond the grid
+                }
+                const int q1 = Local(n[0], n[1], n[2]);
+                if (sign[q0] == sign[q1])
+                {
+                  continue;
+                }
+                if (this->Pass == Edges)
+                {
+                  this->EdgeKey[vertex] = Key(axis, i - f[0], j - f[1], k - f[2]);
+                  (*this->VertexEdge)[vertex] = this->G->PointId(i, j, k) * 3 + axis;
+                  const double v0 = v[q0], v1 = v[q1];
+                  const double t = v0 == v1 ? 0.5 : v0 / (v0 - v1);
+                  (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
+                  (*this->VertexEnds)[2 * vertex] = v0;
+                  (*this->VertexEnds)[2 * vertex + 1] = v1;
+                }
+                ++vertex;
+              }
+      }
+      if (this->Pass != Edges)
+      {
+        for (int k = f[2]; k < l[2]; ++k)
+          for (int j = f[1]; j < l[1]; ++j)
+            for (int i = f[0]; i < l[0]; ++i)
+            {
+              int index = 0;
+              for (int q = 0; q < 8; ++q)
+              {
+                if (sign[Local(i - f[0] + Corner[q][0], j - f[1] + Corner[q][1],
+                      k - f[2] + Corner[q][2])] > 0)
+                {
+                  index |= 1 << q;
+                }
+              }
+              const int* list = this->Cases[index].edges;
+              for (int e = 0; list[e] >= 0; e += 3, ++triangle)
+              {
+                if (this->Pass != Triangles)
+                {
+                  continue;
+                }
+                for (int m = 0; m < 3; ++m)
+                {
+                  const int* ends = Edge[list[e + m]];
+                  int lo[3], axis = 0;
+                  for (int a = 0; a < 3; ++a)
+                  {
+                    lo[a] = std::min(Corner[ends[0]][a], Corner[ends[1]][a]);
+                    if (Corner[ends[0]][a] != Corner[ends[1]][a])
+                    {
+                      axis = a;
+                    }
+                  }
+                  this->TriangleIds[3 * triangle + m] =
+                    this->VertexOf(i + lo[0], j + lo[1], k + lo[2], axis);
+                }
+              }
+            }
+      }
+      if (this->Pass == Count)
+      {
+        (*this->VertexCount)[s] = vertex;
+        (*this->TriangleCount)[s] = triangle;
+      }
+    }
+  }
+};
+
+// PASS 7: vertex positions, each moved to the root of F on its edge (optional), then
+// the exact normal, |∇F| and the nearest factor there.
+//
+// The edge's end points have opposite signs (the sign of F is exact, overflow-safe), so
+// the edge brackets a root; the Illinois variant of regula falsi on F (or, where F is
+// beyond 1e200 at an end, on the overflow-free sign(F)·ln(1 + |F|)), with bisection
+// where the secant leaves the bracket, finds it even where F varies over thousands of
+// orders of magnitude along the edge.
+struct VertexAttributes
+{
+  const pisurf::ProductKernel* Kernel;
+  const Grid* G;
+  const std::vector<vtkIdType>* VertexEdge;
+  const std::vector<double>* VertexT;
+  const std::vector<double>* VertexEnds;
+  vtkPoints* Points;
+  vtkFloatArray* Normals;
+  vtkIntArray* Factor;
+  vtkDoubleArray* GradientMagnitude; // may be null
+  bool Project;
+  double Tolerance; // stop when the bracket is shorter than this
+
+  double Refine(const double a[3], const double b[3], double t, double va, double vb) const
+  {
+    // F itself is nearly linear along a short edge, and cheapest (its values at the ends
+    // are the grid's); where it is beyond 1e200 at an end, its compressed form
+    // sign(F)·ln(1 + |F|) is used instead.
     bool compressed = false;
     auto phi = [&](const double x[3]) {
       return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);
     };
-    double va = phi(a), vb = phi(b);
     if (!(std::fabs(va) < 1e200 && std::fabs(vb) < 1e200))
     {
       compressed = true;
@@ -266,7 +622,7 @@ struct VertexAttributes
     }
     if (!(va < 0 && vb > 0) && !(va > 0 && vb < 0))
     {
-      return; // no bracket (a sample exactly zero): keep the interpolated vertex
+      return t; // no strict bracket (an end exactly on F = 0): keep the interpolation
     }
     const double small = 1e-15 * std::max(std::fabs(va), std::fabs(vb));
     double s0 = 0, s1 = 1;
@@ -291,8 +647,7 @@ struct VertexAttributes
       const double v = phi(q);
       if (std::fabs(v) <= small)
       {
-        s0 = s1 = s;
-        break;
+        return s;
       }
       if ((v < 0) == (va < 0))
       {
@@ -315,35 +670,47 @@ struct VertexAttributes
         side = 1;
       }
     }
-    const double s = 0.5 * (s0 + s1);
-    for (int k = 0; k < 3; ++k)
-    {
-      p[k] = a[k] + s * (b[k] - a[k]);
-    }
+    return 0.5 * (s0 + s1);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    double t[3], p[3], n[3];
-    for (vtkIdType i = begin; i < end; ++i)
+    const int* d = this->G->Dims;
+    for (vtkIdType id = begin; id < end; ++id)
     {
-      this->IndexPoints->GetPoint(i, t);
+      const vtkIdType key = (*this->VertexEdge)[id];
+      const int axis = static_cast<int>(key % 3);
+      const vtkIdType p = key / 3;
+      const int idx[3] = { static_cast<int>(p % d[0]), static_cast<int>((p / d[0]) % d[1]),
+        static_cast<int>(p / (vtkIdType(d[0]) * d[1])) };
+      double a[3], b[3];
       for (int k = 0; k < 3; ++k)
       {
-        p[k] = this->Origin[k] + t[k] * this->Spacing[k];
+        a[k] = this->G->Origin[k] + idx[k] * this->G->Spacing[k];
+        b[k] = a[k] + (k == axis ? this->G->Spacing[k] : 0.0);
       }
+      double t = (*this->VertexT)[id];
       if (this->Project)
       {
-        this->Refine(t, p);
+        t = this->Refine(a, b, t, (*this->VertexEnds)[2 * id], (*this->VertexEnds)[2 * id + 1]);
       }
-      this->Points->SetPoint(i, p);
+      double x[3], n[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        x[k] = a[k] + t * (b[k] - a[k]);
+      }
+      this->Points->SetPoint(id, x);
       double gradientNorm;
       int nearest;
-      this->Kernel->EvaluateVertex(p, n, gradientNorm, nearest);
+      this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
       const float nf[3] = { static_cast<float>(n[0]), static_cast<float>(n[1]),
         static_cast<float>(n[2]) };
-      this->Normals->SetTypedTuple(i, nf);
-      this->Factor->SetValue(i, nearest);
+      this->Normals->SetTypedTuple(id, nf);
+      this->Factor->SetValue(id, nearest);
+      if (this->GradientMagnitude)
+      {
+        this->GradientMagnitude->SetValue(id, gradientNorm);
+      }
     }
   }
 };
@@ -386,7 +753,7 @@ bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacin
   if (samples > static_cast<double>(this->MaximumNumberOfSamples))
   {
     vtkErrorMacro(<< "A grid of " << dims[0] << " x " << dims[1] << " x " << dims[2] << " = "
-                  << samples << " samples needs " << samples * sizeof(double) / (1 << 20)
+                  << samples << " samples needs up to " << samples * sizeof(double) / (1 << 20)
                   << " MiB; the limit (MaximumNumberOfSamples) is "
                   << this->MaximumNumberOfSamples << " samples");
     return false;
@@ -401,6 +768,16 @@ bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacin
 int vtkPiFlyingEdges::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    if (timing)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      std::cerr << what << ": " << std::chrono::duration<double>(now - clock).count() << " s\n";
+      clock = now;
+    }
+  };
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (!this->PiSurface)
   {
@@ -417,7 +794,8 @@ int vtkPiFlyingEdges::RequestData(
   }
 
   double bounds[6];
-  const bool automatic = std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; });
+  const bool automatic =
+    std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; });
   if (automatic)
   {
     if (!this->PiSurface->GetModelBounds(bounds))
@@ -437,93 +815,197 @@ int vtkPiFlyingEdges::RequestData(
     std::copy(this->Bounds, this->Bounds + 6, bounds);
   }
 
-  int dims[3];
-  double spacing[3];
-  if (!this->ComputeGrid(bounds, dims, spacing))
+  Grid g;
+  if (!this->ComputeGrid(bounds, g.Dims, g.Spacing))
   {
     return 0;
   }
-  const double origin[3] = { bounds[0], bounds[2], bounds[4] };
-
-  // PASS 1: sample F row by row.
-  // Flying edges runs in index space (origin 0, spacing 1): its float vertices then
-  // have exact integer coordinates on the axes they do not interpolate along.
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(dims);
-  vtkNew<vtkDoubleArray> values;
-  values->SetName("F");
-  values->SetNumberOfTuples(vtkIdType(dims[0]) * dims[1] * dims[2]);
-  image->GetPointData()->SetScalars(values);
-  BlockGrid blocks;
   for (int a = 0; a < 3; ++a)
   {
-    blocks.Count[a] = std::max(1, (dims[a] - 1 + BlockCells - 1) / BlockCells);
+    g.Origin[a] = bounds[2 * a];
+    // (dims − 1) / B + 1 blocks: the last point plane always lies in the last block at a
+    // local index below BlockCells (that block may be a single plane without cells).
+    g.Count[a] = (g.Dims[a] - 1) / BlockCells + 1;
   }
-  blocks.Sign.assign(vtkIdType(blocks.Count[0]) * blocks.Count[1] * blocks.Count[2], 0);
-  ClassifyBlocks classify{ kernel.get(), dims, origin, spacing, &blocks };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(blocks.Sign.size()), classify);
+
+  // PASS 1: classify the blocks.
+  g.Sign.assign(vtkIdType(g.Count[0]) * g.Count[1] * g.Count[2], 0);
+  ClassifyBlocks classify{ kernel.get(), &g };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), classify);
+  g.Slot.assign(g.Sign.size(), -1);
+  for (size_t b = 0; b < g.Sign.size(); ++b)
+  {
+    if (g.Sign[b] == 0)
+    {
+      g.Slot[b] = static_cast<int>(g.Active.size());
+      g.Active.push_back(static_cast<int>(b));
+    }
+  }
+  this->UpdateProgress(0.1);
+  lap("classify");
+  if (timing)
+  {
+    std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active\n";
+  }
+
+  // PASS 2: restrict the factors to the rows the active blocks need.
+  std::vector<vtkIdType> rowIndex(vtkIdType(g.Dims[1]) * g.Dims[2], -1);
+  std::vector<vtkIdType> rows;
+  for (int b : g.Active)
+  {
+    int c[3];
+    g.BlockCoordinates(b, c);
+    for (int k = g.First(c, 2); k <= g.Last(c, 2); ++k)
+      for (int j = g.First(c, 1); j <= g.Last(c, 1); ++j)
+      {
+        vtkIdType& r = rowIndex[vtkIdType(k) * g.Dims[1] + j];
+        if (r < 0)
+        {
+          r = static_cast<vtkIdType>(rows.size());
+          rows.push_back(vtkIdType(k) * g.Dims[1] + j);
+        }
+      }
+  }
+  std::vector<double> coefficients(rows.size() * kernel->GetLineCoefficientCount());
+  RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+
+  // PASS 3: evaluate the points of the active blocks.
+  // Every entry is written below: no need to clear.
+  g.Values.reset(new double[g.Active.size() * BlockPoints * BlockPoints * BlockPoints]);
   std::atomic<bool> abort{ false };
-  SampleRows sample{ kernel.get(), dims, origin, spacing, &blocks, values->GetPointer(0), this,
-    &abort };
-  vtkSMPTools::For(0, vtkIdType(dims[1]) * dims[2], sample);
+  SampleBlocks sample{ kernel.get(), &g, &rowIndex, &coefficients, this, &abort };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
   if (abort || this->CheckAbort())
   {
     return 1;
   }
   this->UpdateProgress(0.5);
+  lap("sample");
 
-  // PASS 2: contour F = 0.
-  vtkNew<vtkFlyingEdges3D> contour;
-  contour->SetInputData(image);
-  contour->SetValue(0, 0.0);
-  contour->ComputeNormalsOff();
-  contour->ComputeGradientsOff();
-  contour->ComputeScalarsOff();
-  contour->InterpolateAttributesOff();
-  contour->Update();
-  output->ShallowCopy(contour->GetOutput());
-  output->GetPointData()->Initialize();
-  // Flying edges winds its triangles facing decreasing values; ours face ∇F, like the
-  // Normals, so that renderers light the side they see.
-  vtkNew<vtkCellArray> polys;
-  polys->DeepCopy(output->GetPolys());
-  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  // PASS 4: the outer envelope (sign connectivity from the boundary).
+  std::unique_ptr<Envelope> envelope;
+  if (this->OuterEnvelope)
   {
-    polys->ReverseCellAtId(c);
+    // The outside sign: the sign of F on most of the boundary of the grid.
+    vtkIdType positive = 0, total = 0;
+    const int* d = g.Dims;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int u = (a + 1) % 3, w = (a + 2) % 3;
+      for (int side = 0; side < 2; ++side)
+        for (int p = 0; p < d[u]; p += std::max(1, d[u] / 32))
+          for (int q = 0; q < d[w]; q += std::max(1, d[w] / 32))
+          {
+            int idx[3];
+            idx[a] = side ? d[a] - 1 : 0;
+            idx[u] = p;
+            idx[w] = q;
+            const vtkIdType b = g.SkippedBlockOf(idx[0], idx[1], idx[2]);
+            const double v = b >= 0 ? g.Sign[b] : g.ActiveValue(idx[0], idx[1], idx[2]);
+            positive += v >= 0;
+            ++total;
+          }
+    }
+    envelope.reset(new Envelope(g, 2 * positive >= total ? 1 : -1));
+    envelope->Flood();
   }
-  output->SetPolys(polys);
-  this->UpdateProgress(0.8);
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.6);
+  lap("envelope");
+
+  // PASS 5: count the crossing edges and triangles per active block; PASS 6: number and
+  // write them.
+  const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
+  std::vector<vtkIdType> vertexCount(activeCount + 1, 0), triangleCount(activeCount + 1, 0);
+  std::vector<vtkIdType> vertexEdge;
+  std::vector<double> vertexT, vertexEnds;
+  Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), nullptr,
+    &vertexCount, &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count,
+    nullptr };
+  std::unique_ptr<signed char[]> signs(new signed char[size_t(activeCount) * Contour::Points]);
+  contour.Signs = signs.get();
+  vtkSMPTools::For(0, activeCount, contour);
+  vtkIdType vertices = 0, triangles = 0;
+  for (vtkIdType s = 0; s < activeCount; ++s)
+  {
+    const vtkIdType nv = vertexCount[s], nt = triangleCount[s];
+    vertexCount[s] = vertices;
+    triangleCount[s] = triangles;
+    vertices += nv;
+    triangles += nt;
+  }
+  vertexCount[activeCount] = vertices;
+  triangleCount[activeCount] = triangles;
+  std::unique_ptr<unsigned short[]> edgeKeys(new unsigned short[std::max<vtkIdType>(vertices, 1)]);
+  contour.EdgeKey = edgeKeys.get();
+  vertexEdge.resize(vertices);
+  vertexT.resize(vertices);
+  vertexEnds.resize(2 * vertices);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(3 * triangles);
+  contour.TriangleIds = connectivity->GetPointer(0);
+  // Edge tables first (triangles look up neighbours' tables), then the triangles.
+  contour.Pass = Contour::Edges;
+  vtkSMPTools::For(0, activeCount, contour);
+  contour.Pass = Contour::Triangles;
+  vtkSMPTools::For(0, activeCount, contour);
+  this->UpdateProgress(0.75);
+  lap("contour");
   if (this->CheckAbort())
   {
     return 1;
   }
 
-  // PASS 3: analytic normals and the primitive of each vertex.
-  const vtkIdType n = output->GetNumberOfPoints();
+  // PASS 7: vertices.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(vertices);
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
+  normals->SetNumberOfTuples(vertices);
   vtkNew<vtkIntArray> factor;
   factor->SetName("Factor");
-  factor->SetNumberOfTuples(n);
-  if (n > 0)
+  factor->SetNumberOfTuples(vertices);
+  vtkSmartPointer<vtkDoubleArray> gradientMagnitude;
+  if (this->ComputeGradientMagnitude)
   {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(n);
-    vtkSmartPointer<vtkPoints> indexPoints = output->GetPoints();
-    output->SetPoints(points);
-    const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-      (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-      (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-    VertexAttributes attributes{ kernel.get(), indexPoints, points, normals, factor,
-      this->ProjectVertices,
-      origin, spacing, 1e-13 * size };
-    vtkSMPTools::For(0, n, attributes);
+    gradientMagnitude = vtkSmartPointer<vtkDoubleArray>::New();
+    gradientMagnitude->SetName("GradientMagnitude");
+    gradientMagnitude->SetNumberOfTuples(vertices);
   }
+  const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  VertexAttributes attributes{ kernel.get(), &g, &vertexEdge, &vertexT, &vertexEnds, points,
+    normals, factor,
+    gradientMagnitude, this->ProjectVertices, 1e-13 * size };
+  vtkSMPTools::For(0, vertices, attributes);
+  lap("vertices");
+
+  // Triangles face ∇F, like the Normals, so renderers light the side they see: the
+  // marching-cubes table winds them the other way for "inside = positive".
+  vtkIdType* tri = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, triangles, [tri](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType t = begin; t < end; ++t)
+    {
+      std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+    }
+  });
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(3, connectivity);
+  output->SetPoints(points);
+  output->SetPolys(polys);
   output->GetPointData()->SetNormals(normals);
   output->GetPointData()->AddArray(factor);
+  if (gradientMagnitude)
+  {
+    output->GetPointData()->AddArray(gradientMagnitude);
+  }
 
   pisurf::Model model;
   if (this->PiSurface->GetCoreModel(model))
@@ -539,7 +1021,7 @@ int vtkPiFlyingEdges::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
-  if (n == 0)
+  if (vertices == 0)
   {
     vtkWarningMacro(<< "The Pi-surface does not cross the bounds [" << bounds[0] << ", "
                     << bounds[1] << "] x [" << bounds[2] << ", " << bounds[3] << "] x ["
@@ -561,4 +1043,7 @@ void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
      << this->SampleDimensions[1] << ", " << this->SampleDimensions[2] << ")\n";
   os << indent << "MaximumNumberOfSamples: " << this->MaximumNumberOfSamples << "\n";
   os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
+  os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "ComputeGradientMagnitude: " << (this->ComputeGradientMagnitude ? "On" : "Off")
+     << "\n";
 }

@@ -1,41 +1,51 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkPiFlyingEdges
- * @brief triangle mesh of a Pi-surface F = 0 by grid sampling and flying edges
+ * @brief triangle mesh of a Pi-surface F = 0: block-pruned sampling fused with contouring
  *
- * vtkPiFlyingEdges samples a vtkPiSurface on a regular grid over the model bounds and
- * extracts F = 0 with vtkFlyingEdges3D (Schroeder, Maynard, Geveci, "Flying edges: a
- * high-performance scalable isocontouring algorithm", LDAV 2015).
+ * vtkPiFlyingEdges meshes the zero set of a vtkPiSurface over a regular grid spanning
+ * the model bounds, in passes threaded with vtkSMPTools:
  *
- * Sampling pays no virtual call per point per factor: each grid row is a line, every
- * polynomial factor is restricted to it once (an exact univariate polynomial) and
- * evaluated by Horner's rule; rows are distributed over threads with vtkSMPTools. The
- * product is accumulated overflow-safely (see vtkPiSurface). The grid holds
- * sign(F)·ln(1 + |F|): the same signs and zero set as F, but always finite and with
- * finite differences between neighbours, so flying edges' interpolation never collapses
- * a vertex onto a grid point, even for products far beyond the double range.
+ * 1. The grid is cut into blocks of 8³ cells. Each block gets an interval enclosure of
+ *    every factor (the intersection of term-wise interval arithmetic and the mean-value
+ *    form f(c) + Σ ∂f(box)·[−h, h]), combined in sign and log-magnitude so it never
+ *    overflows. A block whose enclosure of F = Π f_i − r excludes 0 is skipped: its
+ *    sign is known and nothing in it is evaluated or contoured.
+ * 2. Every polynomial factor is restricted once to each grid row that crosses an
+ *    active block (an exact univariate polynomial about the row's middle), so no
+ *    virtual call is paid per point per factor, and every grid point evaluates
+ *    identically whichever block asks (no cracks between blocks).
+ * 3. The points of the active blocks are evaluated by Horner's rule, with the product
+ *    accumulated overflow-safely (see vtkPiSurface).
+ * 4. With OuterEnvelope, a flood fill from the boundary of the grid (skipped blocks
+ *    as single nodes) finds the outside region; see SetOuterEnvelope.
+ * 5. Marching cubes, with VTK's case table (vtkMarchingCubesTriangleCases, the one
+ *    vtkFlyingEdges3D also uses, so the same triangles), over the cells of the active
+ *    blocks only; each crossing edge gets exactly one vertex (shared between blocks).
+ * 6. Vertices: with ProjectVertices (default on) each moves to the exact root of F on
+ *    its grid edge. The edge's end values have opposite signs (the sign of F is exact),
+ *    so the root is bracketed; regula falsi (Illinois) on F, or on the overflow-free
+ *    sign(F)·ln(1 + |F|) where F is beyond 1e200 at an end, with bisection as a
+ *    fallback, finds it to 1e-13 of the model size, even where F spans thousands of
+ *    orders of magnitude along the edge. Off, vertices are the linear interpolation of
+ *    F along the edge, as vtkFlyingEdges3D would place them.
  *
- * With ProjectVertices (default on) each vertex is then moved to the exact root of F on
- * its grid edge: the edge's samples have opposite signs (the sign of F is exact), so
- * the root is bracketed, and regula falsi (Illinois) on F, or on the overflow-free
- * sign(F)·ln(1 + |F|) where F is beyond 1e200, with bisection as a fallback, finds it to 1e-13 of the model size,
- * even where F spans thousands of orders of magnitude along the edge.
- *
- * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F)
- * and `Factor` (index of the primitive whose zero set is nearest, so each primitive's
- * patch can be coloured). Field data: `PiSurfaceModel`, the model as .pisurf JSON, when
- * every factor is a polynomial.
+ * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F),
+ * `Factor` (index of the primitive whose zero set is nearest, so each primitive's patch
+ * can be coloured) and, with ComputeGradientMagnitude, `GradientMagnitude` (|∇F|).
+ * Field data: `PiSurfaceModel`, the model as .pisurf JSON (with the meshed bounds when
+ * the model has none), when every factor is a polynomial. Triangles face ∇F.
  *
  * Grid: `Bounds` (all zero = the model's bounds, see vtkPiSurface::GetModelBounds);
  * `Resolution` cells along the longest side (default 128), the other sides get cells
  * of (nearly) the same size; or `SampleDimensions` (points per axis, each >= 2) for
- * exact control. Grids above `MaximumNumberOfSamples` (default 2^28 samples, 2 GiB of
- * doubles) are refused with the memory they would need.
+ * exact control. Grids above `MaximumNumberOfSamples` (default 2^28 samples) are
+ * refused with the memory they would need.
  *
- * @warning Interior sheets (closed shells inside the solid where primitives overlap)
- * are kept: there is no outer-envelope extraction yet.
+ * Factors that are not polynomials have no interval enclosure: every block is then
+ * active and they are evaluated point by point through their virtual calls.
  *
- * @sa vtkPiSurface vtkFlyingEdges3D vtkSampleFunction
+ * @sa vtkPiSurface vtkFlyingEdges3D vtkSampleFunction vtkMarchingCubes
  */
 #ifndef vtkPiFlyingEdges_h
 #define vtkPiFlyingEdges_h
@@ -91,6 +101,24 @@ public:
   vtkBooleanMacro(ProjectVertices, bool);
   ///@}
 
+  ///@{
+  /// Keep only the outer envelope (default on): the sheets that bound the region(s)
+  /// connected to the boundary of the bounds through points of the outside sign, the
+  /// sign F has on most of that boundary (positive for ordinary models, negative for
+  /// a product that is negative far away). Closed interior sheets, such as the lens
+  /// shells where two atoms overlap, are dropped.
+  vtkSetMacro(OuterEnvelope, bool);
+  vtkGetMacro(OuterEnvelope, bool);
+  vtkBooleanMacro(OuterEnvelope, bool);
+  ///@}
+
+  ///@{
+  /// Add the point array `GradientMagnitude` (|∇F|, clamped to VTK_DOUBLE_MAX; default off).
+  vtkSetMacro(ComputeGradientMagnitude, bool);
+  vtkGetMacro(ComputeGradientMagnitude, bool);
+  vtkBooleanMacro(ComputeGradientMagnitude, bool);
+  ///@}
+
   /// The grid the next execution uses: dims and spacing from bounds and settings.
   /// False (with an error) for invalid settings.
   bool ComputeGrid(const double bounds[6], int dims[3], double spacing[3]);
@@ -110,6 +138,8 @@ protected:
   int SampleDimensions[3] = { 0, 0, 0 };
   vtkIdType MaximumNumberOfSamples = vtkIdType(1) << 28;
   bool ProjectVertices = true;
+  bool OuterEnvelope = true;
+  bool ComputeGradientMagnitude = false;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

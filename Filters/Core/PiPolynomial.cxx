@@ -311,6 +311,23 @@ Interval Multiply(const Interval& x, const Interval& y)
 }
 }
 
+Polynomial3 Polynomial3::Derivative(int axis) const
+{
+  Polynomial3 r;
+  for (const auto& t : this->Terms)
+  {
+    const int p[3] = { t.I, t.J, t.K };
+    if (p[axis] > 0)
+    {
+      int q[3] = { t.I, t.J, t.K };
+      --q[axis];
+      r.Terms.push_back({ t.Coefficient * p[axis], q[0], q[1], q[2] });
+    }
+  }
+  r.Finish();
+  return r;
+}
+
 Interval Polynomial3::EvaluateInterval(const Interval box[3]) const
 {
   Interval px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];

@@ -69,6 +69,8 @@ public:
   /// An enclosure of P over the box x ∈ box[0], y ∈ box[1], z ∈ box[2] (term-wise
   /// interval arithmetic; exact powers, so squares are never negative). Cost: O(terms).
   Interval EvaluateInterval(const Interval box[3]) const;
+  /// ∂P/∂(axis) (exact).
+  Polynomial3 Derivative(int axis) const;
   /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
   /// The same into out[0..degree] without allocating (hot path of grid sampling).

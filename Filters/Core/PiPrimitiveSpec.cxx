@@ -172,7 +172,37 @@ Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
     h += 1e-15 * (std::fabs(c) + h);
     local[i] = { c - h, c + h };
   }
-  return this->Poly.EvaluateInterval(local);
+  Interval naive = this->Poly.EvaluateInterval(local);
+  if (!this->HasGradient)
+  {
+    return naive;
+  }
+  double centre[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    centre[i] = 0.5 * (local[i].Lo + local[i].Hi);
+  }
+  const double fc = this->Poly.Evaluate(centre);
+  double lo = fc, hi = fc;
+  for (int i = 0; i < 3; ++i)
+  {
+    const Interval g = this->Gradient[i].EvaluateInterval(local);
+    const double h = 0.5 * (local[i].Hi - local[i].Lo);
+    const double m = std::max(std::fabs(g.Lo), std::fabs(g.Hi)) * h;
+    lo -= m;
+    hi += m;
+  }
+  const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi)) + 1e-300;
+  return { std::max(naive.Lo, lo - slack), std::min(naive.Hi, hi + slack) };
+}
+
+void PolynomialFactor::PrepareIntervals()
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    this->Gradient[i] = this->Poly.Derivative(i);
+  }
+  this->HasGradient = true;
 }
 
 std::vector<double> PolynomialFactor::RestrictToLine(const double o[3], const double d[3]) const

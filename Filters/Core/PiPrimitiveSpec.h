@@ -92,6 +92,12 @@ struct PolynomialFactor
   double B[3] = { 0, 0, 0 };
   bool Bounded = false;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  /// ∂Poly/∂u, ∂v, ∂w: filled by PrepareIntervals() for the mean-value enclosure.
+  Polynomial3 Gradient[3];
+  bool HasGradient = false;
+
+  /// Precomputes what EvaluateInterval needs for its tighter (mean-value) enclosure.
+  void PrepareIntervals();
 
   void ToLocal(const double p[3], double q[3]) const
   {
@@ -107,7 +113,9 @@ struct PolynomialFactor
     return this->Poly.Evaluate(q);
   }
   double EvaluateWithGradient(const double p[3], double g[3]) const;
-  /// An enclosure of f over the axis-aligned world box [b0,b1]x[b2,b3]x[b4,b5].
+  /// An enclosure of f over the axis-aligned world box [b0,b1]x[b2,b3]x[b4,b5]: the
+  /// intersection of the term-wise interval evaluation and, after PrepareIntervals(),
+  /// the mean-value form f(c) + Σ ∂f(box)·[−h, h], whose width shrinks as h².
   Interval EvaluateInterval(const double box[6]) const;
   /// Coefficients of t -> f(o + t·d).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;

@@ -104,6 +104,46 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
 {
   this->AllPolynomial = std::all_of(
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
+  for (Factor& f : this->Factors)
+  {
+    if (f.IsPolynomial)
+    {
+      f.Polynomial.PrepareIntervals();
+      this->LineCoefficients += static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1;
+    }
+  }
+}
+
+void ProductKernel::RestrictLine(const double o[3], const double d[3], double* coefficients) const
+{
+  for (const Factor& f : this->Factors)
+  {
+    if (f.IsPolynomial)
+    {
+      f.Polynomial.RestrictToLine(o, d, coefficients);
+      coefficients += std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
+    }
+  }
+}
+
+double ProductKernel::EvaluateRestricted(const double* coefficients, double t, const double p[3]) const
+{
+  double m = 1.0;
+  long e = 0;
+  for (const Factor& f : this->Factors)
+  {
+    if (f.IsPolynomial)
+    {
+      const int n = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
+      Accumulate(m, e, EvaluateUnivariate(coefficients, n, t));
+      coefficients += n;
+    }
+    else
+    {
+      Accumulate(m, e, f.Generic(p, nullptr));
+    }
+  }
+  return this->Finish(m, e);
 }
 
 inline void ProductKernel::Accumulate(double& m, long& e, double f)
@@ -153,6 +193,10 @@ static void ScaledMinus(double m, long e, double r, double& mantissa, long& expo
 
 double ProductKernel::Finish(double m, long e) const
 {
+  if (e == 0)
+  {
+    return Clamp(m - this->Blending); // the common case: the product never left ±2^256
+  }
   if (m == 0.0)
   {
     return -this->Blending;

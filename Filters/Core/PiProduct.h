@@ -95,6 +95,16 @@ public:
   /// never overflows. Cost: O(Σ terms).
   int ClassifyBox(const double box[6]) const;
 
+  /// Row restriction in two steps, for callers that evaluate the same line many times:
+  /// RestrictLine fills GetLineCoefficientCount() coefficients (every polynomial
+  /// factor restricted to t -> o + t·d), EvaluateRestricted gives F at parameter t
+  /// (p = o + t·d is needed only for factors that are not polynomials). The result
+  /// depends only on (coefficients, t): the same point evaluates identically however
+  /// often it is asked for. F is clamped as by Evaluate.
+  size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
+  void RestrictLine(const double o[3], const double d[3], double* coefficients) const;
+  double EvaluateRestricted(const double* coefficients, double t, const double p[3]) const;
+
   /// The factor with the smallest first-order distance |f_i|/|∇f_i| to its own zero set
   /// at p (the primitive whose patch p lies on); −1 without factors.
   int NearestFactor(const double p[3]) const;
@@ -107,6 +117,7 @@ private:
   std::vector<Factor> Factors;
   double Blending;
   bool AllPolynomial;
+  size_t LineCoefficients = 0;
 };
 }
 
