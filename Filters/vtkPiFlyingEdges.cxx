@@ -5,7 +5,10 @@
 #include "PiProduct.h"
 #include "vtkPiSurface.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -37,6 +40,7 @@ vtkCxxSetObjectMacro(vtkPiFlyingEdges, PiSurface, vtkPiSurface);
 vtkPiFlyingEdges::vtkPiFlyingEdges()
 {
   this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
 }
 
 vtkPiFlyingEdges::~vtkPiFlyingEdges()
@@ -779,6 +783,7 @@ int vtkPiFlyingEdges::RequestData(
     }
   };
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   if (!this->PiSurface)
   {
     vtkErrorMacro(<< "No Pi-surface to mesh: call SetPiSurface()");
@@ -1021,6 +1026,10 @@ int vtkPiFlyingEdges::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
+  if (this->GeneratePrimitives && primitives)
+  {
+    this->MeshPrimitives(bounds, g.Dims, primitives);
+  }
   if (vertices == 0)
   {
     vtkWarningMacro(<< "The Pi-surface does not cross the bounds [" << bounds[0] << ", "
@@ -1029,6 +1038,43 @@ int vtkPiFlyingEdges::RequestData(
   }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+void vtkPiFlyingEdges::MeshPrimitives(const double bounds[6], const int dims[3], vtkPolyData* out)
+{
+  vtkNew<vtkAppendPolyData> append;
+  const int n = this->PiSurface->GetNumberOfFactors();
+  for (int i = 0; i < n && !this->CheckAbort(); ++i)
+  {
+    vtkNew<vtkPiSurface> alone;
+    alone->AddFactor(this->PiSurface->GetFactor(i));
+    vtkNew<vtkPiFlyingEdges> mesher;
+    // A primitive may have no real points (the paper's concavity uses the "sphere"
+    // −x²−y²−z²−0.01): its empty mesh is expected, not worth a warning.
+    vtkNew<vtkCallbackCommand> quiet;
+    mesher->AddObserver(vtkCommand::WarningEvent, quiet);
+    mesher->SetPiSurface(alone);
+    mesher->SetBounds(bounds);
+    mesher->SetSampleDimensions(dims[0], dims[1], dims[2]);
+    mesher->SetOuterEnvelope(false);
+    mesher->SetGeneratePrimitives(false);
+    mesher->SetProjectVertices(this->ProjectVertices);
+    mesher->Update();
+    vtkNew<vtkPolyData> mesh;
+    mesh->ShallowCopy(mesher->GetOutput());
+    mesh->GetFieldData()->Initialize();
+    vtkDataArray* factor = mesh->GetPointData()->GetArray("Factor");
+    if (factor)
+    {
+      factor->Fill(i);
+    }
+    append->AddInputData(mesh);
+  }
+  if (n > 0)
+  {
+    append->Update();
+    out->ShallowCopy(append->GetOutput());
+  }
 }
 
 void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
@@ -1044,6 +1090,7 @@ void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSamples: " << this->MaximumNumberOfSamples << "\n";
   os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
   os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "GeneratePrimitives: " << (this->GeneratePrimitives ? "On" : "Off") << "\n";
   os << indent << "ComputeGradientMagnitude: " << (this->ComputeGradientMagnitude ? "On" : "Off")
      << "\n";
 }

@@ -30,6 +30,8 @@
  *    orders of magnitude along the edge. Off, vertices are the linear interpolation of
  *    F along the edge, as vtkFlyingEdges3D would place them.
  *
+ * Output port 1 (GeneratePrimitives): the primitives themselves, each meshed alone.
+ *
  * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F),
  * `Factor` (index of the primitive whose zero set is nearest, so each primitive's patch
  * can be coloured) and, with ComputeGradientMagnitude, `GradientMagnitude` (|∇F|).
@@ -54,6 +56,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 class vtkPiSurface;
+class vtkPolyData;
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiFlyingEdges : public vtkPolyDataAlgorithm
 {
@@ -113,6 +116,16 @@ public:
   ///@}
 
   ///@{
+  /// Also mesh each primitive on its own (its factor alone, r = 0; unbounded ones
+  /// clipped to the bounds) into output port 1, with `Factor` = its index, so that the
+  /// primitives can be shown in colour under the Pi-surface as in the paper's figures
+  /// (default on).
+  vtkSetMacro(GeneratePrimitives, bool);
+  vtkGetMacro(GeneratePrimitives, bool);
+  vtkBooleanMacro(GeneratePrimitives, bool);
+  ///@}
+
+  ///@{
   /// Add the point array `GradientMagnitude` (|∇F|, clamped to VTK_DOUBLE_MAX; default off).
   vtkSetMacro(ComputeGradientMagnitude, bool);
   vtkGetMacro(ComputeGradientMagnitude, bool);
@@ -131,6 +144,8 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void ReportReferences(vtkGarbageCollector*) override;
+  // Meshes each factor alone into `out` (port 1).
+  void MeshPrimitives(const double bounds[6], const int dims[3], vtkPolyData* out);
 
   vtkPiSurface* PiSurface = nullptr;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
@@ -140,6 +155,7 @@ protected:
   bool ProjectVertices = true;
   bool OuterEnvelope = true;
   bool ComputeGradientMagnitude = false;
+  bool GeneratePrimitives = true;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

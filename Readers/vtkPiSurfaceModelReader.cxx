@@ -5,26 +5,16 @@
 
 #include "vtkObjectFactory.h"
 
-#include <cmath>
 #include <fstream>
+#include <string>
 
 vtkStandardNewMacro(vtkPiSurfaceModelReader);
 
-vtkPiSurfaceModelReader::vtkPiSurfaceModelReader()
-{
-  vtkNew<vtkPiSurface> surface;
-  this->SetPiSurface(surface);
-}
+vtkPiSurfaceModelReader::vtkPiSurfaceModelReader() = default;
 
 vtkPiSurfaceModelReader::~vtkPiSurfaceModelReader()
 {
   this->SetFileName(nullptr);
-}
-
-vtkMTimeType vtkPiSurfaceModelReader::GetMTime()
-{
-  // Not the surface's time: RequestData rewrites the surface from the file.
-  return this->vtkPolyDataAlgorithm::GetMTime();
 }
 
 int vtkPiSurfaceModelReader::CanReadFile(const char* fileName)
@@ -42,35 +32,23 @@ int vtkPiSurfaceModelReader::CanReadFile(const char* fileName)
     text.find("\"pisurf\"") != std::string::npos;
 }
 
-int vtkPiSurfaceModelReader::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkPiSurfaceModelReader::ReadModel()
 {
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "No FileName given");
-    return 0;
-  }
-  if (this->OverrideBlending && !std::isfinite(this->Blending))
-  {
-    vtkErrorMacro(<< "Blending must be a finite number");
-    return 0;
+    return false;
   }
   if (!this->PiSurface->LoadModel(this->FileName))
   {
     vtkErrorMacro(<< this->PiSurface->GetErrorMessage());
-    return 0;
+    return false;
   }
-  if (this->OverrideBlending)
-  {
-    this->PiSurface->SetBlending(this->Blending);
-  }
-  return this->Superclass::RequestData(request, inputVector, outputVector);
+  return true;
 }
 
 void vtkPiSurfaceModelReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "OverrideBlending: " << this->OverrideBlending << "\n";
-  os << indent << "Blending: " << this->Blending << "\n";
 }

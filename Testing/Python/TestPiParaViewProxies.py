@@ -29,6 +29,21 @@ check(reader.Resolution == cxx.GetResolution(), "Resolution default")
 check(reader.OverrideBlending == int(cxx.GetOverrideBlending()), "OverrideBlending default")
 check(reader.Blending == cxx.GetBlending(), "Blending default")
 check(list(reader.Bounds) == list(cxx.GetBounds()), "Bounds default")
+check(reader.OuterEnvelope == int(cxx.GetOuterEnvelope()), "OuterEnvelope default")
+check(reader.ProjectVertices == int(cxx.GetProjectVertices()), "ProjectVertices default")
+check(reader.GeneratePrimitives == int(cxx.GetGeneratePrimitives()), "GeneratePrimitives default")
+check(reader.ComputeGradientMagnitude == int(cxx.GetComputeGradientMagnitude()),
+      "ComputeGradientMagnitude default")
+from pisurfaces import vtkPiSurfaceSource
+source = PiSurface()
+check(source.Model == vtkPiSurfaceSource().GetModel(), "Model default (the paper's two spheres)")
+source.UpdatePipeline()
+check(source.GetDataInformation(0).GetNumberOfCells() > 1000, "Pi Surface source meshes its model")
+check(source.GetDataInformation(1).GetNumberOfCells() > 1000, "Pi Surface source: primitives port")
+formic = PiSurface(Model=open(os.path.join(models, "formic_acid.pisurf")).read(), Resolution=64)
+formic.UpdatePipeline()
+check(formic.GetDataInformation(1).DataInformation.GetArrayInformation("Factor", 0) is not None,
+      "primitives carry Factor")
 function = Clip(Input=Wavelet(), ClipType="Pi Surface Function").ClipType
 cxx_function = vtkPiSurfaceFunction()
 check(function.Model == cxx_function.GetModel() and function.FileName == cxx_function.GetFileName(),
