@@ -8,7 +8,8 @@ import json
 import os
 import sys
 
-from pisurfaces import vtkPiFlyingEdges, vtkPiSurface, vtkPiSurfaceModelReader
+from pisurfaces import vtkPiSurfaceModelReader
+from vtkmodules.vtkCommonCore import vtkLookupTable
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
     vtkActor,
@@ -19,58 +20,16 @@ from vtkmodules.vtkRenderingCore import (
 )
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
 
-# file, figure, view direction (from the focal point to the camera), view up.
-# Where the Pi-surface lies inside its primitives (dents, concavities), it is drawn
-# opaque and the primitives translucent instead (INSIDE).
-INSIDE = {"depression", "concavity", "rounded_cube_sphere_1", "rounded_cube_sphere_2",
-          "rounded_cube_sphere_3"}
-FIGURES = [
-    ("two_spheres_d0.8", "Fig. 1(a) two spheres, d = 0.8", (0.25, -1, 0.45), (0, 0, 1)),
-    ("two_spheres_d0.9", "Fig. 1(b) two spheres, d = 0.9", (0.25, -1, 0.45), (0, 0, 1)),
-    ("two_spheres_d1.0", "Fig. 1(c) two spheres, d = 1.0", (0.25, -1, 0.45), (0, 0, 1)),
-    ("two_spheres_d1.1", "Fig. 1(d) two spheres, d = 1.1", (0.25, -1, 0.45), (0, 0, 1)),
-    ("eggplant_r1", "Fig. 2(a) eggplant, r = 1", (0.25, -1, 0.45), (0, 0, 1)),
-    ("eggplant_r0.25", "Fig. 2(b) eggplant, r = 0.25", (0.25, -1, 0.45), (0, 0, 1)),
-    ("eggplant_r0.05", "Fig. 2(c) eggplant, r = 0.05", (0.25, -1, 0.45), (0, 0, 1)),
-    ("crossed_cylinders_r1", "Fig. 3(a) crossed cylinders, r = 1", (1, -0.8, 0.9), (0, 0, 1)),
-    ("crossed_cylinders_r0.001", "Fig. 3(b) crossed cylinders, r = 0.001", (1, -0.8, 0.9), (0, 0, 1)),
-    ("protrusion", "Fig. 4(a) protrusion", (1, -1.2, 0.6), (0, 0, 1)),
-    ("depression", "Fig. 4(b) depression", (1, -1.2, 0.6), (0, 0, 1)),
-    ("concavity", "Fig. 4(c) concavity", (1, -1.2, 0.6), (0, 0, 1)),
-    ("cup_a1.5", "Fig. 5(a) cup, handle at a = 1.5", (0.2, -1, 0.5), (0, 0, 1)),
-    ("cup_a1.25", "Fig. 5(b) cup, handle at a = 1.25", (0.2, -1, 0.5), (0, 0, 1)),
-    ("cup_a1.0", "Fig. 5(c) cup, handle at a = 1.0", (0.2, -1, 0.5), (0, 0, 1)),
-    ("hammer", "Fig. 6(a) hammer", (0.3, -1, 0.6), (0, 0, 1)),
-    ("sword", "Fig. 6(b) sword", (0.2, 0.3, 1), (0, 1, 0)),
-    ("table", "Fig. 6(c) table", (1, -1.4, -0.9), (0, 0, -1)),
-    ("rounded_cube_sphere_1", "Fig. 7 rounded cube, negative sphere far", (1.2, -1, 0.7), (0, 0, 1)),
-    ("rounded_cube_sphere_2", "Fig. 7 rounded cube, negative sphere nearer", (1.2, -1, 0.7), (0, 0, 1)),
-    ("rounded_cube_sphere_3", "Fig. 7 rounded cube, negative sphere at the face", (1.2, -1, 0.7), (0, 0, 1)),
-    ("formic_acid", "Fig. 8(c) formic acid", (0.2, -0.4, 1), (0, 1, 0)),
-    ("acetic_acid", "Fig. 9(c) acetic acid", (0.2, -0.4, 1), (0, 1, 0)),
-]
-
+# The figures, their views and styles: Testing/Data/gallery.json (shared with the
+# C++ image tests, so the tests check exactly what the gallery shows).
 COLOURS = [
     (0.85, 0.22, 0.18), (0.22, 0.42, 0.85), (0.25, 0.7, 0.3), (0.95, 0.6, 0.15),
     (0.6, 0.3, 0.75), (0.15, 0.7, 0.7), (0.9, 0.8, 0.2), (0.8, 0.4, 0.6),
 ]
 
 
-def mesh(surface, bounds, resolution):
-    mesher = vtkPiFlyingEdges()
-    # A primitive may have no real points (the paper's concavity uses the "sphere"
-    # -x^2-y^2-z^2-0.01): its empty mesh is expected, not worth a warning.
-    mesher.GetExecutive()
-    mesher.AddObserver("WarningEvent", lambda *args: None)
-    mesher.SetPiSurface(surface)
-    mesher.SetBounds(bounds)
-    mesher.SetResolution(resolution)
-    mesher.Update()
-    return mesher.GetOutput()
-
-
 def render(model_path, png_path, direction, view_up, inside, size=(640, 480)):
-    reader = vtkPiSurfaceModelReader()
+    reader = vtkPiSurfaceModelReader()  # port 0: the Pi-surface, port 1: its primitives
     reader.SetFileName(model_path)
     reader.SetResolution(160)
     reader.Update()
@@ -82,19 +41,25 @@ def render(model_path, png_path, direction, view_up, inside, size=(640, 480)):
     renderer = vtkRenderer()
     renderer.SetBackground(1, 1, 1)
     renderer.SetUseDepthPeeling(True)
-    for i in range(surface.GetNumberOfFactors()):
-        alone = vtkPiSurface()  # the primitive itself: its factor alone with r = 0
-        alone.AddFactor(surface.GetFactor(i))
-        mapper = vtkPolyDataMapper()
-        mapper.SetInputData(mesh(alone, bounds, 128))
-        mapper.ScalarVisibilityOff()
-        # Primitives and Pi-surface often coincide: keep the primitives just behind.
-        mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(2, 2)
-        actor = vtkActor()
-        actor.SetMapper(mapper)
-        actor.GetProperty().SetColor(COLOURS[i % len(COLOURS)])
-        actor.GetProperty().SetOpacity(0.35 if inside else 1.0)
-        renderer.AddActor(actor)
+    colours = vtkLookupTable()
+    n = surface.GetNumberOfFactors()
+    colours.SetNumberOfTableValues(n)
+    colours.SetTableRange(0, max(n - 1, 1))
+    for i in range(n):
+        colours.SetTableValue(i, *COLOURS[i % len(COLOURS)], 1.0)
+    colours.Build()
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(reader.GetOutputPort(1))
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray("Factor")
+    mapper.SetLookupTable(colours)
+    mapper.UseLookupTableScalarRangeOn()
+    # Primitives and Pi-surface often coincide: keep the primitives just behind.
+    mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(2, 2)
+    primitives = vtkActor()
+    primitives.SetMapper(mapper)
+    primitives.GetProperty().SetOpacity(0.35 if inside else 1.0)
+    renderer.AddActor(primitives)
 
     mapper = vtkPolyDataMapper()
     mapper.SetInputConnection(reader.GetOutputPort())
@@ -132,13 +97,17 @@ def render(model_path, png_path, direction, view_up, inside, size=(640, 480)):
 def main(models, out):
     os.makedirs(out, exist_ok=True)
     cards = []
-    for name, title, direction, up in FIGURES:
+    with open(os.path.join(os.path.dirname(models.rstrip("/")), "gallery.json")) as f:
+        figures = json.load(f)["figures"]
+    for figure in figures:
+        name, title = figure["model"], figure["title"]
         path = os.path.join(models, name + ".pisurf")
         if not os.path.exists(path):
             print("missing model", path)
             continue
         png = name + ".png"
-        triangles = render(path, os.path.join(out, png), direction, up, name in INSIDE)
+        triangles = render(path, os.path.join(out, png), figure["direction"], figure["view_up"],
+                           figure["pi_surface_inside"])
         with open(path) as f:
             model = json.load(f)
         terms = []
@@ -170,7 +139,7 @@ def main(models, out):
                     % (png, html.escape(title), html.escape(title), html.escape(equation),
                        html.escape(description), triangles))
         f.write("</div></body></html>\n")
-    return 0 if len(cards) == len(FIGURES) else 1
+    return 0 if len(cards) == len(figures) else 1
 
 
 if __name__ == "__main__":
