@@ -28,6 +28,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <cmath>
 #include <deque>
@@ -176,7 +177,26 @@ struct ClassifyBlocks
         box[2 * a] = this->G->Origin[a] + this->G->First(c, a) * this->G->Spacing[a];
         box[2 * a + 1] = this->G->Origin[a] + this->G->Last(c, a) * this->G->Spacing[a];
       }
-      this->G->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBox(box));
+      int sign = this->Kernel->ClassifyBox(box);
+      if (sign == 0)
+      {
+        // Enclosures tighten on smaller boxes: if all eight octants exclude the surface,
+        // so does the block (F has no zero in it, so one sign throughout).
+        sign = 2;
+        for (int o = 0; o < 8 && sign != 0; ++o)
+        {
+          double sub[6];
+          for (int a = 0; a < 3; ++a)
+          {
+            const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
+            sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
+            sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
+          }
+          const int s = this->Kernel->ClassifyBox(sub);
+          sign = s == 0 ? 0 : s;
+        }
+      }
+      this->G->Sign[b] = static_cast<signed char>(sign);
     }
   }
 };
@@ -260,7 +280,8 @@ struct SampleBlocks
 };
 
 // The outer envelope: which points are connected to the boundary of the grid through
-// points of the outside sign. Skipped blocks are handled whole.
+// points of the outside sign. Skipped blocks are handled whole; every other point has
+// a state byte: ±2 its sign, set to ±3 once reached.
 class Envelope
 {
 public:
@@ -268,8 +289,50 @@ public:
     : G(g)
     , Outside(outside)
     , BlockReached(g.Sign.size(), 0)
-    , PointReached(size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2], 0)
+    , State(new signed char[size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2]])
   {
+    // PASS 4a: the state of every point: ±1 in a skipped block, else ±2 from its value.
+    // Blocks fill their own points; shared points get the same value from every block
+    // (skipped signs agree with the exact values, and values are deterministic), and
+    // skipped blocks are written after active ones so that their marks win.
+    signed char* state = this->State.get();
+    const Grid* grid = &this->G;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType b = begin; b < end; ++b)
+        {
+          const bool skipped = grid->Sign[b] != 0;
+          if (skipped != (pass == 1))
+          {
+            continue;
+          }
+          int c[3];
+          grid->BlockCoordinates(b, c);
+          const double* v = skipped ? nullptr
+                                    : grid->Values.get() +
+              size_t(grid->Slot[b]) * BlockPoints * BlockPoints * BlockPoints;
+          for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
+            for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
+            {
+              signed char* row = state + grid->PointId(0, j, k);
+              if (skipped)
+              {
+                std::memset(row + grid->First(c, 0), grid->Sign[b] > 0 ? 1 : -1,
+                  grid->Last(c, 0) - grid->First(c, 0) + 1);
+                continue;
+              }
+              const double* vr = v +
+                size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints -
+                c[0] * BlockCells;
+              for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
+              {
+                row[i] = vr[i] >= 0 ? 2 : -2;
+              }
+            }
+        }
+      });
+    }
   }
 
   void Flood()
@@ -289,26 +352,46 @@ public:
             this->Visit(idx[0], idx[1], idx[2]);
           }
     }
+    const vtkIdType sx = 1, sy = d[0], sz = vtkIdType(d[0]) * d[1];
+    signed char* state = this->State.get();
+    const signed char free = static_cast<signed char>(2 * this->Outside);
     while (!this->BlockQueue.empty() || !this->PointQueue.empty())
     {
       while (!this->PointQueue.empty())
       {
-        const vtkIdType p = this->PointQueue.front();
-        this->PointQueue.pop_front();
+        const vtkIdType p = this->PointQueue.back();
+        this->PointQueue.pop_back();
         const int i = static_cast<int>(p % d[0]);
         const int j = static_cast<int>((p / d[0]) % d[1]);
-        const int k = static_cast<int>(p / (vtkIdType(d[0]) * d[1]));
-        this->Visit(i - 1, j, k);
-        this->Visit(i + 1, j, k);
-        this->Visit(i, j - 1, k);
-        this->Visit(i, j + 1, k);
-        this->Visit(i, j, k - 1);
-        this->Visit(i, j, k + 1);
+        const int k = static_cast<int>(p / sz);
+        // Free neighbours of the outside sign: the common case, handled inline.
+        const vtkIdType n[6] = { i > 0 ? p - sx : -1, i < d[0] - 1 ? p + sx : -1,
+          j > 0 ? p - sy : -1, j < d[1] - 1 ? p + sy : -1, k > 0 ? p - sz : -1,
+          k < d[2] - 1 ? p + sz : -1 };
+        for (int m = 0; m < 6; ++m)
+        {
+          if (n[m] < 0)
+          {
+            continue;
+          }
+          const signed char s = state[n[m]];
+          if (s == free)
+          {
+            state[n[m]] = static_cast<signed char>(3 * this->Outside);
+            this->PointQueue.push_back(n[m]);
+          }
+          else if (s == this->Outside)
+          {
+            const int o[3] = { static_cast<int>(n[m] % d[0]), static_cast<int>((n[m] / d[0]) % d[1]),
+              static_cast<int>(n[m] / sz) };
+            this->Visit(o[0], o[1], o[2]);
+          }
+        }
       }
       if (!this->BlockQueue.empty())
       {
-        const vtkIdType b = this->BlockQueue.front();
-        this->BlockQueue.pop_front();
+        const vtkIdType b = this->BlockQueue.back();
+        this->BlockQueue.pop_back();
         this->ExpandBlock(b);
       }
     }
@@ -318,9 +401,16 @@ public:
   /// the other sign everywhere else.
   int Sign(int i, int j, int k) const
   {
-    const vtkIdType b = this->G.SkippedBlockOf(i, j, k);
-    const bool reached =
-      b >= 0 ? this->BlockReached[b] != 0 : this->PointReached[this->G.PointId(i, j, k)] != 0;
+    const signed char s = this->State[this->G.PointId(i, j, k)];
+    bool reached;
+    if (s == 1 || s == -1)
+    {
+      reached = s == this->Outside && this->BlockReached[this->G.SkippedBlockOf(i, j, k)] != 0;
+    }
+    else
+    {
+      reached = s == 3 * this->Outside;
+    }
     return reached ? this->Outside : -this->Outside;
   }
 
@@ -332,40 +422,32 @@ private:
     {
       return;
     }
+    signed char& s = this->State[this->G.PointId(i, j, k)];
+    if (s == 2 * this->Outside)
+    {
+      s = static_cast<signed char>(3 * this->Outside);
+      this->PointQueue.push_back(this->G.PointId(i, j, k));
+      return;
+    }
+    if (s != this->Outside)
+    {
+      return; // the other sign, or already reached
+    }
+    // In skipped blocks of the outside sign: reach all of them that contain it.
     int xs[2], ys[2], zs[2];
     const int nx = this->G.Containing(i, 0, xs), ny = this->G.Containing(j, 1, ys),
               nz = this->G.Containing(k, 2, zs);
-    bool skipped = false;
     for (int a = 0; a < nx; ++a)
       for (int b = 0; b < ny; ++b)
         for (int c = 0; c < nz; ++c)
         {
           const vtkIdType id = this->G.BlockId(xs[a], ys[b], zs[c]);
-          if (this->G.Sign[id] != 0)
+          if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
           {
-            skipped = true;
-            if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
-            {
-              this->BlockReached[id] = 1;
-              this->BlockQueue.push_back(id);
-            }
+            this->BlockReached[id] = 1;
+            this->BlockQueue.push_back(id);
           }
         }
-    if (skipped)
-    {
-      return;
-    }
-    const vtkIdType p = this->G.PointId(i, j, k);
-    if (this->PointReached[p])
-    {
-      return;
-    }
-    const double v = this->G.ActiveValue(i, j, k);
-    if ((v >= 0 ? 1 : -1) == this->Outside)
-    {
-      this->PointReached[p] = 1;
-      this->PointQueue.push_back(p);
-    }
   }
 
   // A reached skipped block: its neighbours that share points with it (26) are reached
@@ -398,7 +480,8 @@ private:
       {
         int n[3] = { c[0], c[1], c[2] };
         n[a] += side ? 1 : -1;
-        if (n[a] < 0 || n[a] >= this->G.Count[a] || this->G.Sign[this->G.BlockId(n[0], n[1], n[2])] != 0)
+        if (n[a] < 0 || n[a] >= this->G.Count[a] ||
+          this->G.Sign[this->G.BlockId(n[0], n[1], n[2])] != 0)
         {
           continue;
         }
@@ -420,9 +503,9 @@ private:
   const Grid& G;
   int Outside;
   std::vector<char> BlockReached;
-  std::vector<char> PointReached;
-  std::deque<vtkIdType> BlockQueue;
-  std::deque<vtkIdType> PointQueue;
+  std::unique_ptr<signed char[]> State;
+  std::vector<vtkIdType> BlockQueue;
+  std::vector<vtkIdType> PointQueue;
 };
 
 // PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge

@@ -119,7 +119,7 @@ public:
   /// Also mesh each primitive on its own (its factor alone, r = 0; unbounded ones
   /// clipped to the bounds) into output port 1, with `Factor` = its index, so that the
   /// primitives can be shown in colour under the Pi-surface as in the paper's figures
-  /// (default on).
+  /// (default off here; on in vtkPiSurfaceSource and the model reader).
   vtkSetMacro(GeneratePrimitives, bool);
   vtkGetMacro(GeneratePrimitives, bool);
   vtkBooleanMacro(GeneratePrimitives, bool);
@@ -155,7 +155,7 @@ protected:
   bool ProjectVertices = true;
   bool OuterEnvelope = true;
   bool ComputeGradientMagnitude = false;
-  bool GeneratePrimitives = true;
+  bool GeneratePrimitives = false;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

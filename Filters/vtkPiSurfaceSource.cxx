@@ -22,6 +22,7 @@ vtkPiSurfaceSource::vtkPiSurfaceSource()
 {
   vtkNew<vtkPiSurface> surface;
   this->SetPiSurface(surface);
+  this->GeneratePrimitives = true; // ParaView users see the primitives by default
 }
 
 vtkPiSurfaceSource::~vtkPiSurfaceSource() = default;

@@ -7,7 +7,7 @@
  * model (ParaView's "Pi Surface" source). OverrideBlending (default off) replaces the
  * model's r by Blending (default 0.25), for the paper's inflate/shrink experiments.
  * Everything else (Bounds, Resolution, OuterEnvelope, ProjectVertices, the primitives
- * on port 1) is the mesher's. An invalid model is an error that names the key or the
+ * on port 1, which are on by default here) is the mesher's. An invalid model is an error that names the key or the
  * position; the output is then empty.
  *
  * The default Model is the paper's Figure 1(b): two unit spheres at x = ±0.9, r = 0.25.

@@ -2,6 +2,7 @@
 #include "PiExpression.h"
 
 #include <cctype>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -18,6 +19,31 @@ struct ParseError : std::runtime_error
 // Nested parentheses deeper than this are refused rather than risking the stack.
 constexpr int MaxNesting = 200;
 
+using NodePtr = std::shared_ptr<ExpressionNode>;
+
+NodePtr Node(ExpressionNode::Kind kind, NodePtr a = nullptr, NodePtr b = nullptr)
+{
+  auto n = std::make_shared<ExpressionNode>();
+  n->Type = kind;
+  n->A = std::move(a);
+  n->B = std::move(b);
+  return n;
+}
+
+NodePtr ConstantNode(double v)
+{
+  auto n = Node(ExpressionNode::Constant);
+  n->Value = v;
+  return n;
+}
+
+// A parsed sub-expression: its expanded polynomial and its tree as written.
+struct Value
+{
+  Polynomial3 P;
+  NodePtr N;
+};
+
 class Parser
 {
 public:
@@ -27,14 +53,14 @@ public:
   {
   }
 
-  Polynomial3 Parse()
+  Value Parse()
   {
     this->SkipSpace();
     if (this->Pos >= this->Text.size())
     {
       this->Fail("empty expression", 0);
     }
-    Polynomial3 p = this->Expression();
+    Value p = this->Expression();
     this->SkipSpace();
     if (this->Pos < this->Text.size())
     {
@@ -77,70 +103,78 @@ private:
     }
   }
 
-  Polynomial3 Expression()
+  Value Expression()
   {
-    Polynomial3 p = this->Term();
+    Value p = this->Term();
     for (char c = this->Peek(); c == '+' || c == '-'; c = this->Peek())
     {
       const size_t at = this->Pos++;
-      Polynomial3 q = this->Term();
-      p = c == '+' ? p + q : p - q;
-      this->Check(p, at);
+      Value q = this->Term();
+      p.P = c == '+' ? p.P + q.P : p.P - q.P;
+      p.N = Node(c == '+' ? ExpressionNode::Add : ExpressionNode::Subtract, p.N, q.N);
+      this->Check(p.P, at);
     }
     return p;
   }
 
-  Polynomial3 Term()
+  Value Term()
   {
-    Polynomial3 p = this->Unary();
+    Value p = this->Unary();
     for (char c = this->Peek(); c == '*' || c == '/'; c = this->Peek())
     {
       const size_t at = this->Pos++;
       const size_t operandAt = (this->SkipSpace(), this->Pos);
-      Polynomial3 q = this->Unary();
+      Value q = this->Unary();
       if (c == '*')
       {
-        if (p.GetDegree() + q.GetDegree() > MaxDegree)
+        if (p.P.GetDegree() + q.P.GetDegree() > MaxDegree)
         {
           this->Fail("degree above " + std::to_string(MaxDegree), at);
         }
-        p = p * q;
+        p.P = p.P * q.P;
+        p.N = Node(ExpressionNode::Multiply, p.N, q.N);
       }
       else
       {
-        if (!q.IsConstant())
+        if (!q.P.IsConstant())
         {
           this->Fail("division by a non-constant (only constants may divide)", operandAt);
         }
-        const double d = q.GetCoefficient(0, 0, 0);
+        const double d = q.P.GetCoefficient(0, 0, 0);
         if (d == 0.0)
         {
           this->Fail("division by zero", operandAt);
         }
-        p = p.Scaled(1.0 / d);
+        p.P = p.P.Scaled(1.0 / d);
+        p.N = Node(ExpressionNode::Multiply, p.N, ConstantNode(1.0 / d));
       }
-      this->Check(p, at);
+      this->Check(p.P, at);
     }
     return p;
   }
 
-  Polynomial3 Unary()
+  Value Unary()
   {
     const char c = this->Peek();
     if (c == '-' || c == '+')
     {
       ++this->Pos;
       this->Enter();
-      Polynomial3 p = this->Unary();
+      Value p = this->Unary();
       --this->Depth;
-      return c == '-' ? -p : p;
+      if (c == '-')
+      {
+        p.P = -p.P;
+        p.N = Node(ExpressionNode::Negate, p.N);
+      }
+      return p;
     }
     return this->Power();
   }
 
-  Polynomial3 Power()
+  Value Power()
   {
-    Polynomial3 base = this->Primary();
+    Value base = this->Primary();
     if (this->Peek() != '^')
     {
       return base;
@@ -148,36 +182,37 @@ private:
     const size_t at = this->Pos++;
     const size_t exponentAt = (this->SkipSpace(), this->Pos);
     this->Enter();
-    Polynomial3 e = this->Unary();
+    Value e = this->Unary();
     --this->Depth;
-    if (!e.IsConstant())
+    if (!e.P.IsConstant())
     {
       this->Fail("exponent must be a constant", exponentAt);
     }
-    const double n = e.GetCoefficient(0, 0, 0);
+    const double n = e.P.GetCoefficient(0, 0, 0);
     if (n < 0 || n != std::floor(n))
     {
       this->Fail("exponent must be a non-negative integer", exponentAt);
     }
-    if (base.IsConstant())
+    if (base.P.IsConstant())
     {
-      const double v = std::pow(base.GetCoefficient(0, 0, 0), n);
+      const double v = std::pow(base.P.GetCoefficient(0, 0, 0), n);
       if (!std::isfinite(v))
       {
         this->Fail("coefficient overflow (not a finite number)", at);
       }
-      return Polynomial3::Constant(v);
+      return { Polynomial3::Constant(v), ConstantNode(v) };
     }
-    if (n * base.GetDegree() > MaxDegree)
+    if (n * base.P.GetDegree() > MaxDegree)
     {
       this->Fail("degree above " + std::to_string(MaxDegree), at);
     }
-    Polynomial3 p = base.Pow(static_cast<int>(n));
-    this->Check(p, at);
+    Value p{ base.P.Pow(static_cast<int>(n)), Node(ExpressionNode::Power, base.N) };
+    p.N->Exponent = static_cast<int>(n);
+    this->Check(p.P, at);
     return p;
   }
 
-  Polynomial3 Primary()
+  Value Primary()
   {
     const char c = this->Peek();
     const size_t at = this->Pos;
@@ -185,7 +220,7 @@ private:
     {
       ++this->Pos;
       this->Enter();
-      Polynomial3 p = this->Expression();
+      Value p = this->Expression();
       --this->Depth;
       if (this->Peek() != ')')
       {
@@ -196,7 +231,8 @@ private:
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
     {
-      return Polynomial3::Constant(this->Number());
+      const double v = this->Number();
+      return { Polynomial3::Constant(v), ConstantNode(v) };
     }
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_')
     {
@@ -210,7 +246,9 @@ private:
       this->Pos = end;
       if (name == "x" || name == "y" || name == "z")
       {
-        return Polynomial3::Variable(name[0] - 'x');
+        NodePtr n = Node(ExpressionNode::Variable);
+        n->Axis = name[0] - 'x';
+        return { Polynomial3::Variable(n->Axis), n };
       }
       auto it = this->Params.find(name);
       if (it == this->Params.end())
@@ -221,7 +259,7 @@ private:
       {
         this->Fail("parameter '" + name + "' is not a finite number", at);
       }
-      return Polynomial3::Constant(it->second);
+      return { Polynomial3::Constant(it->second), ConstantNode(it->second) };
     }
     if (c == '\0')
     {
@@ -293,12 +331,17 @@ private:
 }
 
 bool ParseExpression(const std::string& text, const ParameterMap& parameters,
-  Polynomial3& result, std::string& error)
+  Polynomial3& result, std::string& error, std::shared_ptr<const ExpressionNode>* tree)
 {
   try
   {
     Parser parser(text, parameters);
-    result = parser.Parse();
+    Value v = parser.Parse();
+    result = v.P;
+    if (tree)
+    {
+      *tree = v.N;
+    }
     return true;
   }
   catch (const ParseError& e)
@@ -306,6 +349,49 @@ bool ParseExpression(const std::string& text, const ParameterMap& parameters,
     error = e.what();
     return false;
   }
+}
+
+Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
+{
+  switch (n.Type)
+  {
+    case ExpressionNode::Constant:
+      return { n.Value, n.Value };
+    case ExpressionNode::Variable:
+      return box[n.Axis];
+    case ExpressionNode::Add:
+    {
+      const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
+      return { a.Lo + b.Lo, a.Hi + b.Hi };
+    }
+    case ExpressionNode::Subtract:
+    {
+      const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
+      return { a.Lo - b.Hi, a.Hi - b.Lo };
+    }
+    case ExpressionNode::Multiply:
+    {
+      const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
+      const double c[4] = { a.Lo * b.Lo, a.Lo * b.Hi, a.Hi * b.Lo, a.Hi * b.Hi };
+      return { std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+    }
+    case ExpressionNode::Negate:
+    {
+      const Interval a = EvaluateInterval(*n.A, box);
+      return { -a.Hi, -a.Lo };
+    }
+    case ExpressionNode::Power:
+    {
+      const Interval a = EvaluateInterval(*n.A, box);
+      const double lo = std::pow(a.Lo, n.Exponent), hi = std::pow(a.Hi, n.Exponent);
+      if (n.Exponent % 2 == 0 && a.Lo < 0 && a.Hi > 0)
+      {
+        return { 0.0, std::max(lo, hi) };
+      }
+      return { std::min(lo, hi), std::max(lo, hi) };
+    }
+  }
+  return { -HUGE_VAL, HUGE_VAL };
 }
 
 bool IsValidParameterName(const std::string& name)

@@ -18,17 +18,44 @@
 #include "PiPolynomial.h"
 
 #include <map>
+#include <memory>
 #include <string>
 
 namespace pisurf
 {
 using ParameterMap = std::map<std::string, double>;
 
-/// Parses `text` into `result`. Returns false and sets `error` (result untouched) on any
-/// syntax error, unknown name, non-constant or negative/fractional exponent, division by
-/// a non-constant or by zero, a degree above MaxDegree or a non-finite coefficient.
+/// An expression as written (before expansion): interval evaluation of this form is
+/// much tighter than of the expanded polynomial, e.g. for (8z+5)^6.
+struct ExpressionNode
+{
+  enum Kind
+  {
+    Constant,
+    Variable,
+    Add,
+    Subtract,
+    Multiply,
+    Negate,
+    Power
+  };
+  Kind Type = Constant;
+  double Value = 0.0;
+  int Axis = 0;
+  int Exponent = 0;
+  std::shared_ptr<ExpressionNode> A, B;
+};
+
+/// An enclosure of the expression over the box (x, y, z) ∈ box[0..2].
+Interval EvaluateInterval(const ExpressionNode& node, const Interval box[3]);
+
+/// Parses `text` into `result` (and, if `tree` is given, the expression as written).
+/// Returns false and sets `error` (result untouched) on any syntax error, unknown name,
+/// non-constant or negative/fractional exponent, division by a non-constant or by zero,
+/// a degree above MaxDegree or a non-finite coefficient.
 bool ParseExpression(const std::string& text, const ParameterMap& parameters,
-  Polynomial3& result, std::string& error);
+  Polynomial3& result, std::string& error,
+  std::shared_ptr<const ExpressionNode>* tree = nullptr);
 
 /// True if `name` may be a parameter: [A-Za-z_][A-Za-z0-9_]* and not x, y or z.
 bool IsValidParameterName(const std::string& name);

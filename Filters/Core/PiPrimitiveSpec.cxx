@@ -173,6 +173,14 @@ Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
     local[i] = { c - h, c + h };
   }
   Interval naive = this->Poly.EvaluateInterval(local);
+  if (this->Natural)
+  {
+    const Interval n = pisurf::EvaluateInterval(*this->Natural, local);
+    const double a = this->NaturalScale * n.Lo, b = this->NaturalScale * n.Hi;
+    const double slack = 1e-12 * (std::fabs(a) + std::fabs(b)) + 1e-300;
+    naive.Lo = std::max(naive.Lo, std::min(a, b) - slack);
+    naive.Hi = std::min(naive.Hi, std::max(a, b) + slack);
+  }
   if (!this->HasGradient)
   {
     return naive;
@@ -295,6 +303,7 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
   };
 
   Polynomial3 p;
+  std::shared_ptr<const ExpressionNode> natural;
   double half[3] = { -1, -1, -1 }; // local half extents; negative: unbounded
   switch (s.Type)
   {
@@ -387,7 +396,7 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
     case PrimitiveType::Polynomial:
     {
       std::string why;
-      if (!ParseExpression(s.Expression, parameters, p, why))
+      if (!ParseExpression(s.Expression, parameters, p, why, &natural))
       {
         error = "expression: " + why;
         return false;
@@ -407,6 +416,8 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
 
   factor = PolynomialFactor();
   factor.Poly = p;
+  factor.Natural = natural;
+  factor.NaturalScale = s.Negate ? -s.Scale : s.Scale;
   std::copy(&R[0][0], &R[0][0] + 9, &factor.A[0][0]);
   for (int i = 0; i < 3; ++i)
   {

@@ -92,6 +92,10 @@ struct PolynomialFactor
   double B[3] = { 0, 0, 0 };
   bool Bounded = false;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  /// The expression as written (polynomial primitives) and the factor it is scaled by:
+  /// its interval enclosure is intersected with the others.
+  std::shared_ptr<const ExpressionNode> Natural;
+  double NaturalScale = 1.0;
   /// ∂Poly/∂u, ∂v, ∂w: filled by PrepareIntervals() for the mean-value enclosure.
   Polynomial3 Gradient[3];
   bool HasGradient = false;
