@@ -23,6 +23,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <atomic>
@@ -534,6 +535,7 @@ struct Contour
   std::vector<double>* VertexEnds;       // per vertex: F at the edge's two end points
   vtkIdType* TriangleIds;
   Mode Pass = Count;
+  int SlabBegin = 0, SlabEnd = 1 << 30; // this piece's block layers along z
   signed char* Signs; // per active block: the signs the contouring sees (Count fills them)
 
   static constexpr int Points = BlockPoints * BlockPoints * BlockPoints;
@@ -621,7 +623,7 @@ struct Contour
                 ++vertex;
               }
       }
-      if (this->Pass != Edges)
+      if (this->Pass != Edges && c[2] >= this->SlabBegin && c[2] < this->SlabEnd)
       {
         for (int k = f[2]; k < l[2]; ++k)
           for (int j = f[1]; j < l[1]; ++j)
@@ -803,6 +805,18 @@ struct VertexAttributes
 };
 }
 
+int vtkPiFlyingEdges::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Pieces are slabs of blocks along z (see RequestData).
+  for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+  {
+    outputVector->GetInformationObject(port)->Set(
+      vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  }
+  return 1;
+}
+
 bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacing[3])
 {
   const double side[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
@@ -867,6 +881,13 @@ int vtkPiFlyingEdges::RequestData(
   };
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
   if (!this->PiSurface)
   {
     vtkErrorMacro(<< "No Pi-surface to mesh: call SetPiSurface()");
@@ -1011,16 +1032,24 @@ int vtkPiFlyingEdges::RequestData(
   std::vector<vtkIdType> vertexCount(activeCount + 1, 0), triangleCount(activeCount + 1, 0);
   std::vector<vtkIdType> vertexEdge;
   std::vector<double> vertexT, vertexEnds;
+  // This piece's slab of block layers along z (all of them for one piece).
+  const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
+  const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
   Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), nullptr,
     &vertexCount, &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count,
-    nullptr };
+    0, 1 << 30, nullptr };
   std::unique_ptr<signed char[]> signs(new signed char[size_t(activeCount) * Contour::Points]);
   contour.Signs = signs.get();
+  contour.SlabBegin = slabBegin;
+  contour.SlabEnd = slabEnd;
   vtkSMPTools::For(0, activeCount, contour);
   vtkIdType vertices = 0, triangles = 0;
   for (vtkIdType s = 0; s < activeCount; ++s)
   {
-    const vtkIdType nv = vertexCount[s], nt = triangleCount[s];
+    int c[3];
+    g.BlockCoordinates(g.Active[s], c);
+    const vtkIdType nv = vertexCount[s];
+    const vtkIdType nt = c[2] >= slabBegin && c[2] < slabEnd ? triangleCount[s] : 0;
     vertexCount[s] = vertices;
     triangleCount[s] = triangles;
     vertices += nv;
@@ -1041,6 +1070,34 @@ int vtkPiFlyingEdges::RequestData(
   vtkSMPTools::For(0, activeCount, contour);
   contour.Pass = Contour::Triangles;
   vtkSMPTools::For(0, activeCount, contour);
+  if (pieces > 1)
+  {
+    // Keep only the vertices this piece's triangles use (the seams' vertices are shared
+    // with the neighbouring piece, at identical positions).
+    std::vector<vtkIdType> renumber(vertices, -1);
+    vtkIdType* tri = connectivity->GetPointer(0);
+    for (vtkIdType t = 0; t < 3 * triangles; ++t)
+    {
+      renumber[tri[t]] = 0;
+    }
+    vtkIdType used = 0;
+    for (vtkIdType v = 0; v < vertices; ++v)
+    {
+      if (renumber[v] == 0)
+      {
+        vertexEdge[used] = vertexEdge[v];
+        vertexT[used] = vertexT[v];
+        vertexEnds[2 * used] = vertexEnds[2 * v];
+        vertexEnds[2 * used + 1] = vertexEnds[2 * v + 1];
+        renumber[v] = used++;
+      }
+    }
+    for (vtkIdType t = 0; t < 3 * triangles; ++t)
+    {
+      tri[t] = renumber[tri[t]];
+    }
+    vertices = used;
+  }
   this->UpdateProgress(0.75);
   lap("contour");
   if (this->CheckAbort())
@@ -1111,7 +1168,7 @@ int vtkPiFlyingEdges::RequestData(
   }
   if (this->GeneratePrimitives && primitives)
   {
-    this->MeshPrimitives(bounds, g.Dims, primitives);
+    this->MeshPrimitives(bounds, g.Dims, piece, pieces, primitives);
   }
   if (vertices == 0)
   {
@@ -1123,7 +1180,8 @@ int vtkPiFlyingEdges::RequestData(
   return 1;
 }
 
-void vtkPiFlyingEdges::MeshPrimitives(const double bounds[6], const int dims[3], vtkPolyData* out)
+void vtkPiFlyingEdges::MeshPrimitives(
+  const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out)
 {
   vtkNew<vtkAppendPolyData> append;
   const int n = this->PiSurface->GetNumberOfFactors();
@@ -1142,7 +1200,7 @@ void vtkPiFlyingEdges::MeshPrimitives(const double bounds[6], const int dims[3],
     mesher->SetOuterEnvelope(false);
     mesher->SetGeneratePrimitives(false);
     mesher->SetProjectVertices(this->ProjectVertices);
-    mesher->Update();
+    mesher->UpdatePiece(piece, pieces, 0);
     vtkNew<vtkPolyData> mesh;
     mesh->ShallowCopy(mesher->GetOutput());
     mesh->GetFieldData()->Initialize();

@@ -44,6 +44,12 @@
  * exact control. Grids above `MaximumNumberOfSamples` (default 2^28 samples) are
  * refused with the memory they would need.
  *
+ * Pieces (ParaView's MPI mode, or UpdatePiece): piece p of n produces the triangles of
+ * the blocks in layers [p·Cz/n, (p+1)·Cz/n) along z (Cz layers of blocks). Every piece
+ * classifies and evaluates the whole grid (the outer envelope is a global property),
+ * but contours, projects and attributes only its own slab; the union of the pieces is
+ * the serial mesh, with the seam vertices present in both neighbours.
+ *
  * Factors that are not polynomials have no interval enclosure: every block is then
  * active and they are evaluated point by point through their virtual calls.
  *
@@ -144,8 +150,10 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void ReportReferences(vtkGarbageCollector*) override;
-  // Meshes each factor alone into `out` (port 1).
-  void MeshPrimitives(const double bounds[6], const int dims[3], vtkPolyData* out);
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Meshes each factor alone into `out` (port 1), for the same piece.
+  void MeshPrimitives(
+    const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out);
 
   vtkPiSurface* PiSurface = nullptr;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
