@@ -15,6 +15,13 @@ bool TermLess(const Monomial& a, const Monomial& b)
   return std::tie(a.I, a.J, a.K) < std::tie(b.I, b.J, b.K);
 }
 
+// The value of a dense quadric (coefficients 1, x, y, z, x², y², z², xy, xz, yz).
+inline double QuadricValue(const double* q, double x, double y, double z)
+{
+  return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
+    z * (q[3] + q[6] * z);
+}
+
 // Powers x^0..x^n of one coordinate.
 inline void Powers(double x, int n, double* out)
 {
@@ -222,20 +229,22 @@ Polynomial3 Polynomial3::Pow(int n) const
   return result;
 }
 
-double Polynomial3::Evaluate(const double p[3]) const
+void Polynomial3::PowerTables(const double p[3], double* px, double* py, double* pz) const
 {
-  if (this->Quadric)
-  {
-    const double x = p[0], y = p[1], z = p[2];
-    const double* q = this->Q;
-    return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
-      z * (q[3] + q[6] * z);
-  }
-  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
   const int n = std::max(this->Degree, 0);
   Powers(p[0], n, px);
   Powers(p[1], n, py);
   Powers(p[2], n, pz);
+}
+
+double Polynomial3::Evaluate(const double p[3]) const
+{
+  if (this->Quadric)
+  {
+    return QuadricValue(this->Q, p[0], p[1], p[2]);
+  }
+  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  this->PowerTables(p, px, py, pz);
   double v = 0.0;
   for (const auto& t : this->Terms)
   {
@@ -253,14 +262,10 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
     g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
     g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
     g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
-    return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
-      z * (q[3] + q[6] * z);
+    return QuadricValue(q, x, y, z);
   }
   double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
-  const int n = std::max(this->Degree, 0);
-  Powers(p[0], n, px);
-  Powers(p[1], n, py);
-  Powers(p[2], n, pz);
+  this->PowerTables(p, px, py, pz);
   double v = 0.0;
   g[0] = g[1] = g[2] = 0.0;
   for (const auto& t : this->Terms)

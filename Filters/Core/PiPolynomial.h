@@ -84,6 +84,8 @@ public:
 private:
   void Finish();        // sorts, merges, drops zeros, then Summarize()
   void Summarize();     // recomputes the degree and the quadric fast path
+  // Powers 0..degree of each coordinate of p.
+  void PowerTables(const double p[3], double* px, double* py, double* pz) const;
   std::vector<Monomial> Terms;
   int Degree = -1; // -1 for the zero polynomial
   // Degree <= 2 (spheres, cylinders, quadrics: most factors) is evaluated from dense

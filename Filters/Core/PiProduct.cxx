@@ -519,20 +519,9 @@ int ProductKernel::ClassifyBox(const double box[6]) const
 
 int ProductKernel::NearestFactor(const double p[3]) const
 {
-  int best = -1;
-  double bestDistance = std::numeric_limits<double>::infinity();
-  double g[3];
-  for (size_t k = 0; k < this->Factors.size(); ++k)
-  {
-    const double f = this->Factors[k].EvaluateWithGradient(p, g);
-    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    const double d = gn > 0 ? std::fabs(f) / gn : (f == 0 ? 0.0 : std::fabs(f) * 1e300);
-    if (best < 0 || d < bestDistance)
-    {
-      best = static_cast<int>(k);
-      bestDistance = d;
-    }
-  }
-  return best;
+  double normal[3], gradientNorm;
+  int nearest;
+  this->EvaluateVertex(p, normal, gradientNorm, nearest);
+  return nearest;
 }
 }

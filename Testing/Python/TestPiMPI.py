@@ -1,21 +1,14 @@
 """Run with `mpiexec -n 2 pvbatch TestPiMPI.py`: each rank meshes its own slab, and the
 union has the serial mesh's area and triangle count."""
 import os
-import sys
+
+from pitesting import check, finish
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from pisurfaces import vtkPiSurfaceModelReader
 from vtkmodules.vtkFiltersCore import vtkMassProperties
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAILED:", what)
 
 
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -48,6 +41,4 @@ for name in ("formic_acid", "cup_a1.0"):
     check(r[0] == 0 and r[1] == 1, "%s: both ranks produced triangles (ProcessId range %s)" % (name, r))
     print("%s: area %.12g (serial %.12g), %d triangles" % (name, area, serial_area, cells))
 
-print("%d failures" % failures)
-if failures:
-    sys.exit(1)  # on success the script ends normally, so pvbatch finalizes MPI on all ranks
+finish(exit_on_success=False)

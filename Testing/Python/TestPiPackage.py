@@ -2,20 +2,13 @@
 models, meshing. Runs under /usr/bin/python3 and pvpython."""
 import math
 import os
-import sys
+
+from pitesting import check, finish
 
 from pisurfaces import vtkPiSurface, vtkPiPrimitive, vtkPiFlyingEdges, vtkPiSurfaceModelReader
 from vtkmodules.vtkCommonCore import reference
 from vtkmodules.vtkCommonDataModel import vtkSphere
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAILED:", what)
 
 
 # The paper's two spheres, F = ((x-d)^2+y^2+z^2-1)((x+d)^2+y^2+z^2-1) - 0.25
@@ -73,5 +66,4 @@ reader.SetFileName(os.path.join(models, "formic_acid.pisurf"))
 reader.Update()
 check(reader.GetOutput().GetNumberOfPolys() > 500, "mesh of formic acid")
 
-print("%d failures" % failures)
-sys.exit(1 if failures else 0)
+finish()

@@ -1,20 +1,13 @@
 """The plugin's proxies from pvpython: the model reader (also via OpenDataFile) gives a
 closed surface with the model attached; Clip by the Pi Surface Function cuts a wavelet."""
 import os
-import sys
+
+from pitesting import check, finish
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from vtkmodules.vtkFiltersCore import vtkFeatureEdges
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAILED:", what)
 
 
 models = os.environ["PISURF_MODELS_DIR"]
@@ -113,5 +106,4 @@ clip.ClipType.Model = '{"pisurf": 1, "blending": 0.25, "primitives": [{"type": "
 clip.UpdatePipeline()
 check(clip.GetDataInformation().GetNumberOfCells() == outside, "invalid model keeps the last valid one")
 
-print("%d failures" % failures)
-sys.exit(1 if failures else 0)
+finish()
