@@ -160,16 +160,18 @@ struct Grid
   }
 };
 
-// PASS 1: interval bounds of F over each block.
+// PASS 1: interval bounds of F over each block still undecided.
 struct ClassifyBlocks
 {
   const pisurf::ProductKernel* Kernel;
   Grid* G;
+  const std::vector<vtkIdType>* Blocks; // the blocks to classify
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    for (vtkIdType b = begin; b < end; ++b)
+    for (vtkIdType n = begin; n < end; ++n)
     {
+      const vtkIdType b = (*this->Blocks)[n];
       int c[3];
       this->G->BlockCoordinates(b, c);
       double box[6];
@@ -937,10 +939,52 @@ int vtkPiFlyingEdges::RequestData(
     g.Count[a] = (g.Dims[a] - 1) / BlockCells + 1;
   }
 
-  // PASS 1: classify the blocks.
+  // PASS 1: classify the blocks, coarse to fine: groups of 4³ blocks first, then the
+  // blocks of the groups the surface may cross (value 2 marks "still to classify").
   g.Sign.assign(vtkIdType(g.Count[0]) * g.Count[1] * g.Count[2], 0);
-  ClassifyBlocks classify{ kernel.get(), &g };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), classify);
+  {
+    const int group = 4;
+    int groups[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      groups[a] = (g.Count[a] + group - 1) / group;
+    }
+    const vtkIdType groupCount = vtkIdType(groups[0]) * groups[1] * groups[2];
+    vtkSMPTools::For(0, groupCount, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType q = begin; q < end; ++q)
+      {
+        const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
+          int(q / (vtkIdType(groups[0]) * groups[1])) };
+        int lo[3], hi[3];
+        double box[6];
+        for (int a = 0; a < 3; ++a)
+        {
+          lo[a] = c[a] * group;
+          hi[a] = std::min(lo[a] + group, g.Count[a]); // blocks [lo, hi)
+          box[2 * a] = g.Origin[a] + lo[a] * BlockCells * g.Spacing[a];
+          box[2 * a + 1] =
+            g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
+        }
+        const int sign = kernel->ClassifyBox(box);
+        for (int z = lo[2]; z < hi[2]; ++z)
+          for (int y = lo[1]; y < hi[1]; ++y)
+            for (int x = lo[0]; x < hi[0]; ++x)
+            {
+              g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(sign == 0 ? 2 : sign);
+            }
+      }
+    });
+  }
+  std::vector<vtkIdType> undecided;
+  for (size_t b = 0; b < g.Sign.size(); ++b)
+  {
+    if (g.Sign[b] == 2)
+    {
+      undecided.push_back(static_cast<vtkIdType>(b));
+    }
+  }
+  ClassifyBlocks classify{ kernel.get(), &g, &undecided };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(undecided.size()), classify);
   g.Slot.assign(g.Sign.size(), -1);
   for (size_t b = 0; b < g.Sign.size(); ++b)
   {
