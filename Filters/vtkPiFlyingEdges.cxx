@@ -715,7 +715,8 @@ struct VertexAttributes
     {
       return t; // no strict bracket (an end exactly on F = 0): keep the interpolation
     }
-    const double small = 1e-15 * std::max(std::fabs(va), std::fabs(vb));
+    // |F| below 1e-12 of its values at the ends: the root is within ~1e-12 of an edge.
+    const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
     double s0 = 0, s1 = 1;
     int side = 0;
     const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);

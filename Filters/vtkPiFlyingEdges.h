@@ -26,7 +26,8 @@
  *    its grid edge. The edge's end values have opposite signs (the sign of F is exact),
  *    so the root is bracketed; regula falsi (Illinois) on F, or on the overflow-free
  *    sign(F)·ln(1 + |F|) where F is beyond 1e200 at an end, with bisection as a
- *    fallback, finds it to 1e-13 of the model size, even where F spans thousands of
+ *    fallback, finds it (|F| below 1e-12 of its end values, or a bracket below 1e-13 of
+ *    the model size: |F|/|∇F| <= 1e-9 × size is tested), even where F spans thousands of
  *    orders of magnitude along the edge. Off, vertices are the linear interpolation of
  *    F along the edge, as vtkFlyingEdges3D would place them.
  *
@@ -102,9 +103,9 @@ public:
   ///@}
 
   ///@{
-  /// Move each vertex to the root of F on its grid edge (default on), to 1e-13 of the
-  /// model size; off, vertices are flying edges' linear interpolation of the
-  /// compressed samples sign(F)·ln(1 + |F|).
+  /// Move each vertex to the root of F on its grid edge (default on), to about 1e-12 of
+  /// the edge; off, vertices are the linear interpolation of F along the edge, as
+  /// vtkFlyingEdges3D places them.
   vtkSetMacro(ProjectVertices, bool);
   vtkGetMacro(ProjectVertices, bool);
   vtkBooleanMacro(ProjectVertices, bool);
