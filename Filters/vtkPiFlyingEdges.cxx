@@ -21,7 +21,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkMassProperties.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataConnectivityFilter.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -822,6 +824,12 @@ int vtkPiFlyingEdges::RequestInformation(
 
 bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacing[3])
 {
+  return this->ComputeGrid(b, this->Resolution, dims, spacing);
+}
+
+bool vtkPiFlyingEdges::ComputeGrid(
+  const double b[6], int resolution, int dims[3], double spacing[3])
+{
   const double side[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
   const int* sd = this->SampleDimensions;
   if (sd[0] != 0 || sd[1] != 0 || sd[2] != 0)
@@ -836,12 +844,12 @@ bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacin
   }
   else
   {
-    if (this->Resolution < 1)
+    if (resolution < 1)
     {
-      vtkErrorMacro(<< "Resolution must be at least 1 (got " << this->Resolution << ")");
+      vtkErrorMacro(<< "Resolution must be at least 1 (got " << resolution << ")");
       return false;
     }
-    const double h = std::max({ side[0], side[1], side[2] }) / this->Resolution;
+    const double h = std::max({ side[0], side[1], side[2] }) / resolution;
     for (int a = 0; a < 3; ++a)
     {
       const double cells = std::max(1.0, std::ceil(side[a] / h - 1e-9));
@@ -927,8 +935,20 @@ int vtkPiFlyingEdges::RequestData(
     std::copy(this->Bounds, this->Bounds + 6, bounds);
   }
 
+  int resolution = this->Resolution;
+  const bool explicitDimensions = this->SampleDimensions[0] != 0 ||
+    this->SampleDimensions[1] != 0 || this->SampleDimensions[2] != 0;
+  if (this->AutomaticResolution && !explicitDimensions)
+  {
+    resolution = this->ChooseResolution(bounds);
+    if (resolution <= 0)
+    {
+      return 0;
+    }
+  }
+  this->LastResolution = resolution;
   Grid g;
-  if (!this->ComputeGrid(bounds, g.Dims, g.Spacing))
+  if (!this->ComputeGrid(bounds, resolution, g.Dims, g.Spacing))
   {
     return 0;
   }
@@ -1225,6 +1245,69 @@ int vtkPiFlyingEdges::RequestData(
   return 1;
 }
 
+int vtkPiFlyingEdges::ChooseResolution(const double bounds[6])
+{
+  int previousComponents = -1;
+  double previousArea = 0.0;
+  int chosen = 0;
+  for (int resolution = 32; resolution <= this->MaximumAutomaticResolution; resolution *= 2)
+  {
+    int dims[3];
+    double spacing[3];
+    const double side = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2],
+      bounds[5] - bounds[4] });
+    double samples = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      samples *= std::ceil((bounds[2 * a + 1] - bounds[2 * a]) / side * resolution) + 1;
+    }
+    if (samples > static_cast<double>(this->MaximumNumberOfSamples) ||
+      !this->ComputeGrid(bounds, resolution, dims, spacing))
+    {
+      break;
+    }
+    vtkNew<vtkPiFlyingEdges> mesher;
+    mesher->SetPiSurface(this->PiSurface);
+    mesher->SetBounds(bounds);
+    mesher->SetResolution(resolution);
+    mesher->SetOuterEnvelope(this->OuterEnvelope);
+    mesher->SetProjectVertices(this->ProjectVertices);
+    mesher->SetMaximumNumberOfSamples(this->MaximumNumberOfSamples);
+    vtkNew<vtkCallbackCommand> quiet;
+    mesher->AddObserver(vtkCommand::WarningEvent, quiet);
+    mesher->Update();
+    vtkNew<vtkPolyDataConnectivityFilter> connectivity;
+    connectivity->SetInputConnection(mesher->GetOutputPort());
+    connectivity->SetExtractionModeToAllRegions();
+    connectivity->Update();
+    const int components = connectivity->GetNumberOfExtractedRegions();
+    vtkNew<vtkMassProperties> mass;
+    mass->SetInputConnection(mesher->GetOutputPort());
+    mass->Update();
+    const double area = mesher->GetOutput()->GetNumberOfCells() > 0 ? mass->GetSurfaceArea() : 0.0;
+    chosen = resolution;
+    if (components > 0 && components == previousComponents &&
+      std::fabs(area - previousArea) <= 0.01 * area)
+    {
+      return resolution;
+    }
+    previousComponents = components;
+    previousArea = area;
+    if (this->CheckAbort())
+    {
+      break;
+    }
+  }
+  if (chosen == 0)
+  {
+    vtkErrorMacro(<< "AutomaticResolution: no resolution from 32 fits MaximumNumberOfSamples");
+    return 0;
+  }
+  vtkWarningMacro(<< "AutomaticResolution: the mesh had not settled (components and area) by "
+                  << chosen << " cells; using " << chosen);
+  return chosen;
+}
+
 void vtkPiFlyingEdges::MeshPrimitives(
   const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out)
 {
@@ -1276,6 +1359,9 @@ void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSamples: " << this->MaximumNumberOfSamples << "\n";
   os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
   os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "AutomaticResolution: " << (this->AutomaticResolution ? "On" : "Off") << "\n";
+  os << indent << "MaximumAutomaticResolution: " << this->MaximumAutomaticResolution << "\n";
+  os << indent << "LastResolution: " << this->LastResolution << "\n";
   os << indent << "GeneratePrimitives: " << (this->GeneratePrimitives ? "On" : "Off") << "\n";
   os << indent << "ComputeGradientMagnitude: " << (this->ComputeGradientMagnitude ? "On" : "Off")
      << "\n";

@@ -91,6 +91,22 @@ public:
   ///@}
 
   ///@{
+  /// Choose the resolution automatically (default off): mesh at 32, 64, 128, ... cells
+  /// along the longest side and stop at the first resolution whose mesh has the same
+  /// number of connected components as the previous one and an area within 1% of it,
+  /// so that thin parts and small components have appeared and the surface has
+  /// settled. At most MaximumAutomaticResolution (default 512) and within
+  /// MaximumNumberOfSamples; if it has not settled by then, the largest is used with
+  /// a warning. Ignored when SampleDimensions is set. LastResolution tells the choice.
+  vtkSetMacro(AutomaticResolution, bool);
+  vtkGetMacro(AutomaticResolution, bool);
+  vtkBooleanMacro(AutomaticResolution, bool);
+  vtkSetClampMacro(MaximumAutomaticResolution, int, 32, 4096);
+  vtkGetMacro(MaximumAutomaticResolution, int);
+  vtkGetMacro(LastResolution, int);
+  ///@}
+
+  ///@{
   /// Grid points per axis; all zero (the default) = derived from Resolution.
   vtkSetVector3Macro(SampleDimensions, int);
   vtkGetVector3Macro(SampleDimensions, int);
@@ -142,6 +158,8 @@ public:
   /// The grid the next execution uses: dims and spacing from bounds and settings.
   /// False (with an error) for invalid settings.
   bool ComputeGrid(const double bounds[6], int dims[3], double spacing[3]);
+  /// The same for a given resolution.
+  bool ComputeGrid(const double bounds[6], int resolution, int dims[3], double spacing[3]);
 
   vtkMTimeType GetMTime() override;
 
@@ -152,6 +170,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void ReportReferences(vtkGarbageCollector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // AutomaticResolution's search; 0 (with an error) if no resolution fits.
+  int ChooseResolution(const double bounds[6]);
   // Meshes each factor alone into `out` (port 1), for the same piece.
   void MeshPrimitives(
     const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out);
@@ -165,6 +185,9 @@ protected:
   bool OuterEnvelope = true;
   bool ComputeGradientMagnitude = false;
   bool GeneratePrimitives = false;
+  bool AutomaticResolution = false;
+  int MaximumAutomaticResolution = 512;
+  int LastResolution = 0;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

@@ -11,6 +11,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkFlyingEdges3D.h"
+#include "vtkMassProperties.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
@@ -186,6 +187,28 @@ int TestPiMeshing(int, char*[])
   PI_CHECK(cup->GetOutput()->GetNumberOfCells() > 1000);
   PI_CHECK(cup->GetOutput()->GetNumberOfCells() == contour->GetOutput()->GetNumberOfCells());
   PI_CHECK(cup->GetOutput()->GetNumberOfPoints() == contour->GetOutput()->GetNumberOfPoints());
+
+  // AutomaticResolution: settles where the thin table legs are all there.
+  vtkNew<vtkPiSurfaceModelReader> automatic;
+  automatic->SetFileName(Model("table").c_str());
+  automatic->AutomaticResolutionOn();
+  automatic->GeneratePrimitivesOff();
+  automatic->Update();
+  vtkNew<vtkPiSurfaceModelReader> fine;
+  fine->SetFileName(Model("table").c_str());
+  fine->SetResolution(256);
+  fine->GeneratePrimitivesOff();
+  fine->Update();
+  std::cout << "automatic resolution for the table: " << automatic->GetLastResolution() << "\n";
+  PI_CHECK(automatic->GetLastResolution() >= 64 && automatic->GetLastResolution() <= 512);
+  PI_CHECK(Components(automatic->GetOutput()) == Components(fine->GetOutput()));
+  vtkNew<vtkMassProperties> massAutomatic, massFine;
+  massAutomatic->SetInputData(automatic->GetOutput());
+  massFine->SetInputData(fine->GetOutput());
+  massAutomatic->Update();
+  massFine->Update();
+  PI_CHECK_NEAR(massAutomatic->GetSurfaceArea(), massFine->GetSurfaceArea(),
+    0.02 * massFine->GetSurfaceArea());
 
   // A bad model in the source: an error naming the key, an empty output.
   vtkNew<vtkPiSurfaceSource> bad;

@@ -23,6 +23,7 @@ check(reader.OverrideBlending == int(cxx.GetOverrideBlending()), "OverrideBlendi
 check(reader.Blending == cxx.GetBlending(), "Blending default")
 check(list(reader.Bounds) == list(cxx.GetBounds()), "Bounds default")
 check(reader.OuterEnvelope == int(cxx.GetOuterEnvelope()), "OuterEnvelope default")
+check(reader.AutomaticResolution == int(cxx.GetAutomaticResolution()), "AutomaticResolution default")
 check(reader.ProjectVertices == int(cxx.GetProjectVertices()), "ProjectVertices default")
 check(reader.GeneratePrimitives == int(cxx.GetGeneratePrimitives()), "GeneratePrimitives default")
 check(reader.ComputeGradientMagnitude == int(cxx.GetComputeGradientMagnitude()),
