@@ -7,10 +7,12 @@
  * the model bounds, in passes threaded with vtkSMPTools:
  *
  * 1. The grid is cut into blocks of 8³ cells. Each block gets an interval enclosure of
- *    every factor (the intersection of term-wise interval arithmetic and the mean-value
- *    form f(c) + Σ ∂f(box)·[−h, h]), combined in sign and log-magnitude so it never
- *    overflows. A block whose enclosure of F = Π f_i − r excludes 0 is skipped: its
- *    sign is known and nothing in it is evaluated or contoured.
+ *    every factor (the intersection of term-wise interval arithmetic, the mean-value
+ *    form f(c) + Σ ∂f(box)·[−h, h], and the expression as written, so (8z+5)^6 is
+ *    bounded tightly), combined in sign and log-magnitude so it never overflows. A
+ *    block whose enclosure of F = Π f_i − r excludes 0 is skipped: its sign is known and
+ *    nothing in it is evaluated or contoured. Groups of 4³ blocks are classified first;
+ *    a block is kept only if one of its octants may hold the surface.
  * 2. Every polynomial factor is restricted once to each grid row that crosses an
  *    active block (an exact univariate polynomial about the row's middle), so no
  *    virtual call is paid per point per factor, and every grid point evaluates
