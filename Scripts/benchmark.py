@@ -67,6 +67,15 @@ def grid_points(bounds, n):
     return pts
 
 
+def sampler(function, bounds, n):
+    sample = vtkSampleFunction()
+    sample.SetImplicitFunction(function)
+    sample.SetModelBounds(bounds)
+    sample.SetSampleDimensions(n, n, n)
+    sample.ComputeNormalsOff()
+    return sample
+
+
 def run(name, surface, n):
     bounds = [0.0] * 6
     surface.GetModelBounds(bounds)
@@ -75,11 +84,7 @@ def run(name, surface, n):
     for backend in ("Sequential", "STDThread"):
         vtkSMPTools.SetBackend(backend)
 
-        sample = vtkSampleFunction()
-        sample.SetImplicitFunction(surface)
-        sample.SetModelBounds(bounds)
-        sample.SetSampleDimensions(n, n, n)
-        sample.ComputeNormalsOff()
+        sample = sampler(surface, bounds, n)
 
         def vtk_eval():
             sample.Modified()
@@ -95,11 +100,7 @@ def run(name, surface, n):
         composed = vtkImplicitSum()
         for i in range(surface.GetNumberOfFactors()):
             composed.AddFunction(surface.GetFactor(i))
-        sample_sum = vtkSampleFunction()
-        sample_sum.SetImplicitFunction(composed)
-        sample_sum.SetModelBounds(bounds)
-        sample_sum.SetSampleDimensions(n, n, n)
-        sample_sum.ComputeNormalsOff()
+        sample_sum = sampler(composed, bounds, n)
 
         def sum_eval():
             sample_sum.Modified()
@@ -109,11 +110,7 @@ def run(name, surface, n):
         t_vtk_eval, _ = best_of(vtk_eval)
         t_pi_eval, _ = best_of(pi_eval)
 
-        sample_n = vtkSampleFunction()
-        sample_n.SetImplicitFunction(surface)
-        sample_n.SetModelBounds(bounds)
-        sample_n.SetSampleDimensions(n, n, n)
-        sample_n.ComputeNormalsOff()
+        sample_n = sampler(surface, bounds, n)
         contour = vtkFlyingEdges3D()
         contour.SetInputConnection(sample_n.GetOutputPort())
         contour.SetValue(0, 0.0)

@@ -230,15 +230,22 @@ double ProductKernel::Evaluate(const double p[3]) const
   return this->Finish(m, e);
 }
 
-double ProductKernel::EvaluateWithGradient(const double p[3], double g[3]) const
+// The scaled product and its gradient at p, factor by factor.
+static ScaledProduct ProductAndGradient(const std::vector<Factor>& factors, const double p[3])
 {
   ScaledProduct s;
   double gi[3];
-  for (const Factor& f : this->Factors)
+  for (const Factor& f : factors)
   {
     const double fi = f.EvaluateWithGradient(p, gi);
     s.Multiply(fi, gi);
   }
+  return s;
+}
+
+double ProductKernel::EvaluateWithGradient(const double p[3], double g[3]) const
+{
+  const ScaledProduct s = ProductAndGradient(this->Factors, p);
   for (int k = 0; k < 3; ++k)
   {
     g[k] = SafeLdexp(s.G[k], s.E);
@@ -248,13 +255,7 @@ double ProductKernel::EvaluateWithGradient(const double p[3], double g[3]) const
 
 double ProductKernel::EvaluateDistance(const double p[3], double normal[3]) const
 {
-  ScaledProduct s;
-  double gi[3];
-  for (const Factor& f : this->Factors)
-  {
-    const double fi = f.EvaluateWithGradient(p, gi);
-    s.Multiply(fi, gi);
-  }
+  const ScaledProduct s = ProductAndGradient(this->Factors, p);
   // F·2^-E = P − r·2^-E and ∇F·2^-E = G: the common scale cancels in the ratio.
   const double Fs = s.P - (this->Blending == 0.0 ? 0.0 : SafeLdexp(this->Blending, -s.E));
   const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
