@@ -41,7 +41,16 @@
 vtkStandardNewMacro(vtkPiFlyingEdges);
 vtkCxxSetObjectMacro(vtkPiFlyingEdges, PiSurface, vtkPiSurface);
 
+// Work buffers kept between executions: interactive re-meshing (and every execution
+// after the first) does not pay for fresh memory again.
+struct vtkPiFlyingEdges::vtkInternals
+{
+  std::vector<double> Values;
+  std::vector<signed char> State;
+};
+
 vtkPiFlyingEdges::vtkPiFlyingEdges()
+  : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(2);
@@ -93,7 +102,7 @@ struct Grid
   std::vector<signed char> Sign; // per block: +1/−1 skipped with that sign, 0 active
   std::vector<int> Active;       // active block ids
   std::vector<int> Slot;         // per block: index in Active, or −1
-  std::unique_ptr<double[]> Values; // per active block: BlockPoints³ values of F
+  double* Values = nullptr; // per active block: BlockPoints³ values of F (not owned)
 
   vtkIdType BlockId(int bx, int by, int bz) const
   {
@@ -261,7 +270,7 @@ struct SampleBlocks
       }
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
-      double* v = this->G->Values.get() + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
+      double* v = this->G->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
       for (int k = this->G->First(c, 2); k <= this->G->Last(c, 2); ++k)
       {
         for (int j = this->G->First(c, 1); j <= this->G->Last(c, 1); ++j)
@@ -290,17 +299,20 @@ struct SampleBlocks
 class Envelope
 {
 public:
-  Envelope(const Grid& g, int outside)
+  // `buffer` holds the per-point states; it is kept between executions (no clearing
+  // needed: every entry is written here).
+  Envelope(const Grid& g, int outside, std::vector<signed char>& buffer)
     : G(g)
     , Outside(outside)
     , BlockReached(g.Sign.size(), 0)
-    , State(new signed char[size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2]])
   {
+    buffer.resize(size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2]);
+    this->State = buffer.data();
     // PASS 4a: the state of every point: ±1 in a skipped block, else ±2 from its value.
     // Blocks fill their own points; shared points get the same value from every block
     // (skipped signs agree with the exact values, and values are deterministic), and
     // skipped blocks are written after active ones so that their marks win.
-    signed char* state = this->State.get();
+    signed char* state = this->State;
     const Grid* grid = &this->G;
     for (int pass = 0; pass < 2; ++pass)
     {
@@ -315,7 +327,7 @@ public:
           int c[3];
           grid->BlockCoordinates(b, c);
           const double* v = skipped ? nullptr
-                                    : grid->Values.get() +
+                                    : grid->Values +
               size_t(grid->Slot[b]) * BlockPoints * BlockPoints * BlockPoints;
           for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
             for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
@@ -358,7 +370,7 @@ public:
           }
     }
     const vtkIdType sx = 1, sy = d[0], sz = vtkIdType(d[0]) * d[1];
-    signed char* state = this->State.get();
+    signed char* state = this->State;
     const signed char free = static_cast<signed char>(2 * this->Outside);
     while (!this->BlockQueue.empty() || !this->PointQueue.empty())
     {
@@ -508,7 +520,7 @@ private:
   const Grid& G;
   int Outside;
   std::vector<char> BlockReached;
-  std::unique_ptr<signed char[]> State;
+  signed char* State; // one per grid point (not owned)
   std::vector<vtkIdType> BlockQueue;
   std::vector<vtkIdType> PointQueue;
 };
@@ -570,7 +582,7 @@ struct Contour
     {
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
-      const double* v = this->G->Values.get() + size_t(s) * Points;
+      const double* v = this->G->Values + size_t(s) * Points;
       const int f[3] = { this->G->First(c, 0), this->G->First(c, 1), this->G->First(c, 2) };
       const int l[3] = { this->G->Last(c, 0), this->G->Last(c, 1), this->G->Last(c, 2) };
       signed char* sign = this->Signs + size_t(s) * Points;
@@ -1046,7 +1058,8 @@ int vtkPiFlyingEdges::RequestData(
 
   // PASS 3: evaluate the points of the active blocks.
   // Every entry is written below: no need to clear.
-  g.Values.reset(new double[g.Active.size() * BlockPoints * BlockPoints * BlockPoints]);
+  this->Internals->Values.resize(g.Active.size() * BlockPoints * BlockPoints * BlockPoints);
+  g.Values = this->Internals->Values.data();
   std::atomic<bool> abort{ false };
   SampleBlocks sample{ kernel.get(), &g, &rowIndex, &coefficients, this, &abort };
   vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
@@ -1081,7 +1094,7 @@ int vtkPiFlyingEdges::RequestData(
             ++total;
           }
     }
-    envelope.reset(new Envelope(g, 2 * positive >= total ? 1 : -1));
+    envelope.reset(new Envelope(g, 2 * positive >= total ? 1 : -1, this->Internals->State));
     envelope->Flood();
   }
   if (this->CheckAbort())

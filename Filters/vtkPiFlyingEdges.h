@@ -53,6 +53,10 @@
  * but contours, projects and attributes only its own slab; the union of the pieces is
  * the serial mesh, with the seam vertices present in both neighbours.
  *
+ * The largest work buffers (the active blocks' values, the envelope's point states)
+ * are kept between executions, so re-meshing does not pay for fresh memory again;
+ * they are released with the object.
+ *
  * Factors that are not polynomials have no interval enclosure: every block is then
  * active and they are evaluated point by point through their virtual calls.
  *
@@ -63,6 +67,8 @@
 
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
 
 class vtkPiSurface;
 class vtkPolyData;
@@ -194,6 +200,9 @@ protected:
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;
   void operator=(const vtkPiFlyingEdges&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
 };
 
 #endif

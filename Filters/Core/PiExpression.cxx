@@ -383,7 +383,7 @@ Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
     case ExpressionNode::Power:
     {
       const Interval a = EvaluateInterval(*n.A, box);
-      const double lo = std::pow(a.Lo, n.Exponent), hi = std::pow(a.Hi, n.Exponent);
+      const double lo = IntegerPower(a.Lo, n.Exponent), hi = IntegerPower(a.Hi, n.Exponent);
       if (n.Exponent % 2 == 0 && a.Lo < 0 && a.Hi > 0)
       {
         return { 0.0, std::max(lo, hi) };

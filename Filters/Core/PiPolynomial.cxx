@@ -297,7 +297,7 @@ Interval PowerInterval(const Interval& x, int n)
   {
     return { 1.0, 1.0 };
   }
-  const double a = std::pow(x.Lo, n), b = std::pow(x.Hi, n);
+  const double a = IntegerPower(x.Lo, n), b = IntegerPower(x.Hi, n);
   if (n % 2 == 1 || x.Lo >= 0)
   {
     return { std::min(a, b), std::max(a, b) };

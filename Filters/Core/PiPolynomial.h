@@ -94,6 +94,22 @@ private:
   double Q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
 };
 
+/// x^n for n >= 0 by repeated squaring (exact for small n, much cheaper than std::pow).
+inline double IntegerPower(double x, int n)
+{
+  double r = 1.0;
+  while (n > 0)
+  {
+    if (n & 1)
+    {
+      r *= x;
+    }
+    x *= x;
+    n >>= 1;
+  }
+  return r;
+}
+
 /// Horner evaluation of c[0] + c[1]·t + ... .
 inline double EvaluateUnivariate(const double* c, int n, double t)
 {
