@@ -412,23 +412,37 @@ public:
         this->ExpandBlock(b);
       }
     }
+    // Mark the points of reached skipped blocks reached too, so that Sign() is one
+    // lookup. (A point shared with an unreached skipped block of the outside sign
+    // cannot exist: such neighbours are reached together.)
+    const Grid* grid = &this->G;
+    const char* blockReached = this->BlockReached.data();
+    const signed char mark = static_cast<signed char>(3 * this->Outside);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(grid->Sign.size()), [=](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType b = begin; b < end; ++b)
+      {
+        if (!blockReached[b])
+        {
+          continue;
+        }
+        int c[3];
+        grid->BlockCoordinates(b, c);
+        for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
+          for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
+          {
+            std::memset(state + grid->PointId(grid->First(c, 0), j, k), mark,
+              grid->Last(c, 0) - grid->First(c, 0) + 1);
+          }
+      }
+    });
   }
 
   /// The sign the contouring sees: the outside sign where connected to the boundary,
   /// the other sign everywhere else.
   int Sign(int i, int j, int k) const
   {
-    const signed char s = this->State[this->G.PointId(i, j, k)];
-    bool reached;
-    if (s == 1 || s == -1)
-    {
-      reached = s == this->Outside && this->BlockReached[this->G.SkippedBlockOf(i, j, k)] != 0;
-    }
-    else
-    {
-      reached = s == 3 * this->Outside;
-    }
-    return reached ? this->Outside : -this->Outside;
+    return this->State[this->G.PointId(i, j, k)] == 3 * this->Outside ? this->Outside
+                                                                      : -this->Outside;
   }
 
 private:
