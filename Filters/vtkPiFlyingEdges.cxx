@@ -578,12 +578,18 @@ struct Contour
   }
 
   // The vertex id of edge (i, j, k, axis): a binary search among its owner's vertices.
-  vtkIdType VertexOf(int i, int j, int k, int axis) const
+  // `own`: the current block's slot and its dense key -> vertex table (edges it owns
+  // are looked up directly; a neighbour's by binary search).
+  vtkIdType VertexOf(int i, int j, int k, int axis, int own, const vtkIdType* table) const
   {
     const int c[3] = { i / BlockCells, j / BlockCells, k / BlockCells };
     const int slot = this->G->Slot[this->G->BlockId(c[0], c[1], c[2])];
     const unsigned short key =
       Key(axis, i - c[0] * BlockCells, j - c[1] * BlockCells, k - c[2] * BlockCells);
+    if (slot == own)
+    {
+      return table[key];
+    }
     const unsigned short* first = this->EdgeKey + (*this->VertexCount)[slot];
     const unsigned short* last = this->EdgeKey + (*this->VertexCount)[slot + 1];
     return std::lower_bound(first, last, key) - this->EdgeKey;
@@ -655,6 +661,14 @@ struct Contour
       }
       if (this->Pass != Edges && c[2] >= this->SlabBegin && c[2] < this->SlabEnd)
       {
+        thread_local std::vector<vtkIdType> table(3 * BlockCells * BlockCells * BlockCells);
+        if (this->Pass == Triangles)
+        {
+          for (vtkIdType id = (*this->VertexCount)[s]; id < (*this->VertexCount)[s + 1]; ++id)
+          {
+            table[this->EdgeKey[id]] = id;
+          }
+        }
         for (int k = f[2]; k < l[2]; ++k)
           for (int j = f[1]; j < l[1]; ++j)
             for (int i = f[0]; i < l[0]; ++i)
@@ -687,8 +701,8 @@ struct Contour
                       axis = a;
                     }
                   }
-                  this->TriangleIds[3 * triangle + m] =
-                    this->VertexOf(i + lo[0], j + lo[1], k + lo[2], axis);
+                  this->TriangleIds[3 * triangle + m] = this->VertexOf(
+                    i + lo[0], j + lo[1], k + lo[2], axis, static_cast<int>(s), table.data());
                 }
               }
             }
