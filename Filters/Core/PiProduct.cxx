@@ -312,8 +312,10 @@ void ProductKernel::EvaluateVertex(
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     const double fi = this->Factors[k].EvaluateWithGradient(p, gi);
-    const double gn = std::sqrt(gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2]);
-    const double d = gn > 0 ? std::fabs(fi) / gn : (fi == 0 ? 0.0 : std::fabs(fi) * 1e300);
+    // Squared first-order distance f²/|∇f|²: the same order, no square root.
+    const double g2 = gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2];
+    const double d = g2 > 0 ? fi * fi / g2
+                            : (fi == 0 ? 0.0 : std::numeric_limits<double>::infinity());
     if (nearest < 0 || d < best)
     {
       nearest = static_cast<int>(k);
