@@ -464,19 +464,14 @@ void ProductKernel::EvaluateLine(
   }
 }
 
-int ProductKernel::ClassifyBox(const double box[6]) const
+int SignOfProductMinus(const std::vector<Interval>& enclosures, double r)
 {
-  if (!this->AllPolynomial)
-  {
-    return 0;
-  }
   // |P| ∈ [exp(logMin), exp(logMax)]; sign fixed unless a factor spans zero.
   double logMin = 0.0, logMax = 0.0;
   int sign = 1;
   bool spansZero = false;
-  for (const Factor& f : this->Factors)
+  for (const Interval& v : enclosures)
   {
-    const Interval v = f.Polynomial.EvaluateInterval(box);
     if (!(v.Lo <= v.Hi)) // NaN
     {
       return 0;
@@ -493,7 +488,6 @@ int ProductKernel::ClassifyBox(const double box[6]) const
       spansZero = true;
     }
   }
-  const double r = this->Blending;
   if (spansZero)
   {
     // P ∈ [−|P|max, |P|max] (or half of it): excludes r only if it cannot reach |r|.
@@ -518,6 +512,21 @@ int ProductKernel::ClassifyBox(const double box[6]) const
     return -sign; // |P| < |r|
   }
   return 0;
+}
+
+int ProductKernel::ClassifyBox(const double box[6]) const
+{
+  if (!this->AllPolynomial)
+  {
+    return 0;
+  }
+  thread_local std::vector<Interval> enclosures;
+  enclosures.resize(this->Factors.size());
+  for (size_t i = 0; i < this->Factors.size(); ++i)
+  {
+    enclosures[i] = this->Factors[i].Polynomial.EvaluateInterval(box);
+  }
+  return SignOfProductMinus(enclosures, this->Blending);
 }
 
 int ProductKernel::NearestFactor(const double p[3]) const

@@ -52,6 +52,10 @@ struct Factor
   }
 };
 
+/// +1 if Π f_i − r > 0 for every choice of f_i in enclosures[i], −1 if < 0 for every
+/// choice, 0 otherwise. Magnitudes are combined as logarithms: never overflows.
+int SignOfProductMinus(const std::vector<Interval>& enclosures, double r);
+
 class ProductKernel
 {
 public:
