@@ -96,6 +96,27 @@ slice_.SliceType.Model = model
 slice_.UpdatePipeline()
 check(slice_.GetDataInformation().GetNumberOfCells() > 0, "slice by the Pi-surface")
 
+# Pi Ray Cast on the Pi Surface output: hits with the fixed array names; XML defaults are
+# the C++ defaults.
+from pisurfaces import vtkPiRayCaster
+rays = PiRayCast(Input=source, Resolution=[64, 64])
+rays.UpdatePipeline()
+info = rays.GetDataInformation()
+check(info.GetNumberOfPoints() > 500, "Pi Ray Cast hits: %d" % info.GetNumberOfPoints())
+for name in ("Normals", "GradientMagnitude", "Depth", "PixelIndex", "ViewIndex", "HitIndex",
+             "Singular", "Tangent", "Factor"):
+    check(info.GetPointDataInformation().GetArrayInformation(name) is not None, "ray array " + name)
+fresh = PiRayCast(Input=source)
+cxx_rays = vtkPiRayCaster()
+check(list(fresh.Resolution) == list(cxx_rays.GetResolution()), "Resolution default")
+check(fresh.ViewMode == "-Z" and cxx_rays.GetViewMode() == vtkPiRayCaster.MINUS_Z, "ViewMode default")
+check(list(fresh.CameraPosition) == list(cxx_rays.GetCameraPosition()), "CameraPosition default")
+check(fresh.ViewAngle == cxx_rays.GetViewAngle(), "ViewAngle default")
+rays.ViewMode = "Six Axis Views"
+rays.UpdatePipeline()
+check(rays.GetDataInformation().GetPointDataInformation().GetArrayInformation("ViewIndex").GetComponentRange(0)[1] == 5,
+      "six views")
+
 extract = ExtractCellsByRegion(Input=wavelet, IntersectWith="Pi Surface Function")
 extract.IntersectWith.Model = model
 extract.UpdatePipeline()

@@ -1,0 +1,572 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPiRayCaster.h"
+
+#include "PiModel.h"
+#include "PiProduct.h"
+#include "PiRayRoots.h"
+#include "vtkPiSurface.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkGarbageCollector.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkPiRayCaster);
+vtkCxxSetObjectMacro(vtkPiRayCaster, PiSurface, vtkPiSurface);
+
+namespace
+{
+// One view: the ray of pixel (i, j) starts at O + i·U + j·V (axis and parallel views)
+// or at O with direction D + i·U + j·V (perspective), t in [0, Length] for axis views.
+struct View
+{
+  bool Perspective = false;
+  bool Axis = false;
+  int W = 0, H = 0;
+  double O[3], U[3], V[3], D[3];
+  double Length = 0.0;
+};
+
+struct Hit
+{
+  int I, J, View, Index;
+  double T;
+  bool Tangent;
+  double P[3];
+};
+
+// [t0, t1] ∩ [0, ∞) of the line o + t·d inside the box; false if it misses.
+bool Clip(const double o[3], const double d[3], const double b[6], double& t0, double& t1)
+{
+  t0 = 0.0;
+  t1 = VTK_DOUBLE_MAX;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < b[2 * a] || o[a] > b[2 * a + 1])
+      {
+        return false;
+      }
+      continue;
+    }
+    double ta = (b[2 * a] - o[a]) / d[a], tb = (b[2 * a + 1] - o[a]) / d[a];
+    if (ta > tb)
+    {
+      std::swap(ta, tb);
+    }
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 < t1;
+}
+
+// The roots of F along one ray segment, overflow-safe and certified for polynomials.
+struct CastRows
+{
+  const pisurf::ProductKernel* Kernel;
+  const std::vector<View>* Views;
+  const double* Bounds;
+  bool AllHits;
+  double Tolerance;
+  std::vector<std::vector<Hit>>* Rows; // per (view, j)
+  vtkPiRayCaster* Algorithm;
+  std::atomic<bool>* Abort;
+
+  void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out) const
+  {
+    double o[3], d[3];
+    double t0 = 0, t1 = v.Length;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (v.Perspective)
+      {
+        o[k] = v.O[k];
+        d[k] = v.D[k] + i * v.U[k] + j * v.V[k];
+      }
+      else
+      {
+        o[k] = v.O[k] + i * v.U[k] + j * v.V[k];
+        d[k] = v.D[k];
+      }
+    }
+    vtkMath::Normalize(d);
+    if (!v.Axis && !Clip(o, d, this->Bounds, t0, t1))
+    {
+      return;
+    }
+    // Restrict about the entry point: t' = t − t0.
+    const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
+    std::vector<pisurf::RayRoot> roots;
+    if (this->Kernel->IsPolynomial())
+    {
+      std::vector<std::vector<double>> factors(this->Kernel->GetNumberOfFactors());
+      for (size_t f = 0; f < factors.size(); ++f)
+      {
+        factors[f] = this->Kernel->GetFactor(f).Polynomial.RestrictToLine(start, d);
+      }
+      pisurf::RayRootOptions options;
+      options.Tolerance = this->Tolerance;
+      options.AllRoots = this->AllHits;
+      pisurf::FindRayRoots(factors, this->Kernel->GetBlending(), 0.0, t1 - t0, options, roots);
+    }
+    else
+    {
+      // Documented fallback for non-polynomial factors: a sign scan and bisection.
+      const int n = 4096;
+      auto at = [&](double t) {
+        const double p[3] = { start[0] + t * d[0], start[1] + t * d[1], start[2] + t * d[2] };
+        return this->Kernel->EvaluateCompressed(p);
+      };
+      double ta = 0.0, va = at(0.0);
+      for (int s = 1; s <= n && (this->AllHits || roots.empty()); ++s)
+      {
+        const double tb = (t1 - t0) * s / n, vb = at(tb);
+        if ((va < 0) != (vb < 0))
+        {
+          double lo = ta, hi = tb, vlo = va;
+          for (int it = 0; it < 100 && hi - lo > this->Tolerance; ++it)
+          {
+            const double mid = 0.5 * (lo + hi), vm = at(mid);
+            if ((vm < 0) == (vlo < 0))
+            {
+              lo = mid;
+              vlo = vm;
+            }
+            else
+            {
+              hi = mid;
+            }
+          }
+          roots.push_back({ 0.5 * (lo + hi), false });
+        }
+        ta = tb;
+        va = vb;
+      }
+    }
+    int index = 0;
+    for (const pisurf::RayRoot& r : roots)
+    {
+      Hit h{ i, j, viewIndex, index++, r.T + (v.Axis ? 0.0 : t0), r.Tangent, {} };
+      for (int k = 0; k < 3; ++k)
+      {
+        h.P[k] = start[k] + r.T * d[k];
+      }
+      out.push_back(h);
+    }
+  }
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    const bool single = vtkSMPTools::GetSingleThread();
+    for (vtkIdType row = begin; row < end; ++row)
+    {
+      if (single && this->Algorithm->CheckAbort())
+      {
+        *this->Abort = true;
+      }
+      if (*this->Abort)
+      {
+        return;
+      }
+      // Rows are numbered view by view.
+      vtkIdType r = row;
+      size_t vi = 0;
+      while (r >= (*this->Views)[vi].H)
+      {
+        r -= (*this->Views)[vi].H;
+        ++vi;
+      }
+      const View& v = (*this->Views)[vi];
+      std::vector<Hit>& out = (*this->Rows)[row];
+      for (int i = 0; i < v.W; ++i)
+      {
+        this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out);
+      }
+    }
+  }
+};
+}
+
+vtkPiRayCaster::vtkPiRayCaster()
+{
+  this->SetNumberOfInputPorts(1);
+}
+
+vtkPiRayCaster::~vtkPiRayCaster()
+{
+  this->SetPiSurface(nullptr);
+}
+
+int vtkPiRayCaster::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+vtkMTimeType vtkPiRayCaster::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->PiSurface)
+  {
+    t = std::max(t, this->PiSurface->GetMTime());
+  }
+  return t;
+}
+
+void vtkPiRayCaster::ReportReferences(vtkGarbageCollector* collector)
+{
+  this->Superclass::ReportReferences(collector);
+  vtkGarbageCollectorReport(collector, this->PiSurface, "PiSurface");
+}
+
+int vtkPiRayCaster::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+
+  // The surface: from the input's model, or the one set.
+  vtkSmartPointer<vtkPiSurface> surface = this->PiSurface;
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  if (input)
+  {
+    auto* json =
+      vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
+    if (!json || json->GetNumberOfValues() < 1)
+    {
+      vtkErrorMacro(<< "The input carries no PiSurfaceModel field data (use the output of a "
+                       "Pi Surface source or model reader)");
+      return 0;
+    }
+    surface = vtkSmartPointer<vtkPiSurface>::New();
+    if (!surface->SetModelJSON(json->GetValue(0)))
+    {
+      vtkErrorMacro(<< "Invalid PiSurfaceModel: " << surface->GetErrorMessage());
+      return 0;
+    }
+  }
+  if (!surface)
+  {
+    vtkErrorMacro(<< "No Pi-surface: connect an input with a PiSurfaceModel or call SetPiSurface()");
+    return 0;
+  }
+  auto kernel = surface->GetKernel();
+  if (!kernel || kernel->GetNumberOfFactors() == 0)
+  {
+    vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
+    return 0;
+  }
+  if (this->Resolution[0] < 1 || this->Resolution[1] < 1 ||
+    double(this->Resolution[0]) * this->Resolution[1] > 1e8)
+  {
+    vtkErrorMacro(<< "Resolution must be at least 1 x 1 and at most 1e8 pixels (got "
+                  << this->Resolution[0] << " x " << this->Resolution[1] << ")");
+    return 0;
+  }
+  double b[6];
+  if (std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; }))
+  {
+    if (!surface->GetModelBounds(b))
+    {
+      vtkErrorMacro(<< "No bounds for the rays: " << surface->GetErrorMessage());
+      return 0;
+    }
+  }
+  else if (!pisurf::ValidBounds(this->Bounds))
+  {
+    vtkErrorMacro(<< "Bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero)");
+    return 0;
+  }
+  else
+  {
+    std::copy(this->Bounds, this->Bounds + 6, b);
+  }
+
+  // The views.
+  const int w = this->Resolution[0], h = this->Resolution[1];
+  std::vector<View> views;
+  auto axisView = [&](int axis, bool plus) {
+    // Image axes: (x, y) for z, (y, z) for x, (z, x) for y; start on the far face for
+    // the − directions, the near face for the + directions.
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    View view;
+    view.Axis = true;
+    view.W = w;
+    view.H = h;
+    for (int k = 0; k < 3; ++k)
+    {
+      view.U[k] = view.V[k] = view.D[k] = 0.0;
+    }
+    view.U[u] = (b[2 * u + 1] - b[2 * u]) / w;
+    view.V[v] = (b[2 * v + 1] - b[2 * v]) / h;
+    view.D[axis] = plus ? 1.0 : -1.0;
+    view.O[u] = b[2 * u] + 0.5 * view.U[u];
+    view.O[v] = b[2 * v] + 0.5 * view.V[v];
+    view.O[axis] = plus ? b[2 * axis] : b[2 * axis + 1];
+    view.Length = b[2 * axis + 1] - b[2 * axis];
+    views.push_back(view);
+  };
+  switch (this->ViewMode)
+  {
+    case PLUS_X:
+      axisView(0, true);
+      break;
+    case MINUS_X:
+      axisView(0, false);
+      break;
+    case PLUS_Y:
+      axisView(1, true);
+      break;
+    case MINUS_Y:
+      axisView(1, false);
+      break;
+    case PLUS_Z:
+      axisView(2, true);
+      break;
+    case MINUS_Z:
+      axisView(2, false);
+      break;
+    case SIX_AXIS_VIEWS:
+    case THREE_AXIS_DIRECTIONS:
+      axisView(2, false);
+      axisView(0, false);
+      axisView(1, false);
+      if (this->ViewMode == SIX_AXIS_VIEWS)
+      {
+        axisView(2, true);
+        axisView(0, true);
+        axisView(1, true);
+      }
+      break;
+    default:
+    {
+      double dir[3], up[3], right[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        dir[k] = this->CameraFocalPoint[k] - this->CameraPosition[k];
+        up[k] = this->CameraViewUp[k];
+      }
+      if (!(vtkMath::Normalize(dir) > 0) || !std::isfinite(dir[0] + dir[1] + dir[2]))
+      {
+        vtkErrorMacro(<< "Degenerate camera: CameraPosition equals CameraFocalPoint");
+        return 0;
+      }
+      vtkMath::Cross(dir, up, right);
+      if (!(vtkMath::Normalize(right) > 1e-12))
+      {
+        vtkErrorMacro(<< "Degenerate camera: CameraViewUp is parallel to the view direction");
+        return 0;
+      }
+      vtkMath::Cross(right, dir, up);
+      double hh;
+      if (this->ParallelProjection)
+      {
+        hh = this->ParallelScale;
+      }
+      else
+      {
+        if (!(this->ViewAngle > 0 && this->ViewAngle < 180))
+        {
+          vtkErrorMacro(<< "ViewAngle must be in (0, 180) degrees");
+          return 0;
+        }
+        hh = std::tan(vtkMath::RadiansFromDegrees(0.5 * this->ViewAngle));
+      }
+      if (!(hh > 0) || !std::isfinite(hh))
+      {
+        vtkErrorMacro(<< "ParallelScale must be positive");
+        return 0;
+      }
+      const double hw = hh * w / h;
+      View view;
+      view.Perspective = !this->ParallelProjection;
+      view.W = w;
+      view.H = h;
+      for (int k = 0; k < 3; ++k)
+      {
+        view.U[k] = right[k] * 2 * hw / w;
+        view.V[k] = up[k] * 2 * hh / h;
+        const double corner = -hw * right[k] - hh * up[k] + 0.5 * (view.U[k] + view.V[k]);
+        if (view.Perspective)
+        {
+          view.O[k] = this->CameraPosition[k];
+          view.D[k] = dir[k] + corner;
+        }
+        else
+        {
+          view.O[k] = this->CameraPosition[k] + corner;
+          view.D[k] = dir[k];
+        }
+      }
+      views.push_back(view);
+    }
+  }
+  const bool allHits = this->AllHits || this->ViewMode == THREE_AXIS_DIRECTIONS;
+  const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+
+  // PASS 1: cast the rays, one image row per work item.
+  const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * h;
+  std::vector<std::vector<Hit>> rows(rowCount);
+  std::atomic<bool> abort{ false };
+  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, this, &abort };
+  vtkSMPTools::For(0, rowCount, cast);
+  if (abort || this->CheckAbort())
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.8);
+
+  // PASS 2: the hits' attributes from the exact gradient.
+  std::vector<Hit> hits;
+  for (auto& row : rows)
+  {
+    hits.insert(hits.end(), row.begin(), row.end());
+  }
+  const vtkIdType n = static_cast<vtkIdType>(hits.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> gradient;
+  gradient->SetName("GradientMagnitude");
+  gradient->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> depth;
+  depth->SetName("Depth");
+  depth->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> pixel;
+  pixel->SetName("PixelIndex");
+  pixel->SetNumberOfComponents(2);
+  pixel->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> viewIndex;
+  viewIndex->SetName("ViewIndex");
+  viewIndex->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> hitIndex;
+  hitIndex->SetName("HitIndex");
+  hitIndex->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> singular;
+  singular->SetName("Singular");
+  singular->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> tangent;
+  tangent->SetName("Tangent");
+  tangent->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> factor;
+  factor->SetName("Factor");
+  factor->SetNumberOfTuples(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      const Hit& hit = hits[k];
+      double nrm[3], g;
+      int nearest;
+      kernel->EvaluateVertex(hit.P, nrm, g, nearest);
+      points->SetPoint(k, hit.P);
+      normals->SetTuple3(k, nrm[0], nrm[1], nrm[2]);
+      gradient->SetValue(k, g);
+      depth->SetValue(k, hit.T);
+      pixel->SetTypedComponent(k, 0, hit.I);
+      pixel->SetTypedComponent(k, 1, hit.J);
+      viewIndex->SetValue(k, hit.View);
+      hitIndex->SetValue(k, hit.Index);
+      tangent->SetValue(k, hit.Tangent ? 1 : 0);
+      factor->SetValue(k, nearest);
+    }
+  });
+  double largest = 0.0;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    largest = std::max(largest, gradient->GetValue(k));
+  }
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    singular->SetValue(k, gradient->GetValue(k) <= this->SingularTolerance * largest ? 1 : 0);
+  }
+
+  vtkNew<vtkCellArray> verts;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    verts->InsertNextCell(1, &k);
+  }
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  vtkPointData* pd = output->GetPointData();
+  pd->SetNormals(normals);
+  for (vtkAbstractArray* a : std::vector<vtkAbstractArray*>{ gradient, depth, pixel, viewIndex,
+         hitIndex, singular, tangent, factor })
+  {
+    pd->AddArray(a);
+  }
+
+  vtkNew<vtkDoubleArray> viewData;
+  viewData->SetName("PiRayViews");
+  viewData->SetNumberOfComponents(16);
+  for (const View& v : views)
+  {
+    const double t[16] = { v.Perspective ? 1.0 : 0.0, double(v.W), double(v.H), v.O[0], v.O[1],
+      v.O[2], v.U[0], v.U[1], v.U[2], v.V[0], v.V[1], v.V[2], v.D[0], v.D[1], v.D[2], v.Length };
+    viewData->InsertNextTuple(t);
+  }
+  output->GetFieldData()->AddArray(viewData);
+  pisurf::Model model;
+  if (surface->GetCoreModel(model))
+  {
+    if (!model.HasBounds)
+    {
+      model.HasBounds = true;
+      std::copy(b, b + 6, model.Bounds);
+    }
+    vtkNew<vtkStringArray> json;
+    json->SetName("PiSurfaceModel");
+    json->InsertNextValue(pisurf::WriteModel(model));
+    output->GetFieldData()->AddArray(json);
+  }
+  if (n == 0)
+  {
+    vtkWarningMacro(<< "No ray hits the Pi-surface");
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkPiRayCaster::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PiSurface: " << this->PiSurface << "\n";
+  os << indent << "ViewMode: " << this->ViewMode << "\n";
+  os << indent << "Resolution: " << this->Resolution[0] << " x " << this->Resolution[1] << "\n";
+  os << indent << "AllHits: " << this->AllHits << "\n";
+  os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
+     << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
+     << this->Bounds[5] << ")\n";
+  os << indent << "CameraPosition: (" << this->CameraPosition[0] << ", "
+     << this->CameraPosition[1] << ", " << this->CameraPosition[2] << ")\n";
+  os << indent << "CameraFocalPoint: (" << this->CameraFocalPoint[0] << ", "
+     << this->CameraFocalPoint[1] << ", " << this->CameraFocalPoint[2] << ")\n";
+  os << indent << "CameraViewUp: (" << this->CameraViewUp[0] << ", " << this->CameraViewUp[1]
+     << ", " << this->CameraViewUp[2] << ")\n";
+  os << indent << "ViewAngle: " << this->ViewAngle << "\n";
+  os << indent << "ParallelProjection: " << this->ParallelProjection << "\n";
+  os << indent << "ParallelScale: " << this->ParallelScale << "\n";
+  os << indent << "SingularTolerance: " << this->SingularTolerance << "\n";
+}
