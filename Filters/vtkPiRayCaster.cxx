@@ -14,6 +14,7 @@
 #include "vtkGarbageCollector.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -21,17 +22,20 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiRayCaster);
 vtkCxxSetObjectMacro(vtkPiRayCaster, PiSurface, vtkPiSurface);
 
-namespace
+namespace vtkPiRayCasterDetail
 {
 // One view: the ray of pixel (i, j) starts at O + i·U + j·V (axis and parallel views)
 // or at O with direction D + i·U + j·V (perspective), t in [0, Length] for axis views.
@@ -205,9 +209,32 @@ struct CastRows
 };
 }
 
+using namespace vtkPiRayCasterDetail;
+
 vtkPiRayCaster::vtkPiRayCaster()
 {
   this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkPiRayCaster::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkImageData");
+  return 1;
+}
+
+int vtkPiRayCaster::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // The image: w × h pixels, one slice per view (the number of views is known here).
+  const int views = this->ViewMode == SIX_AXIS_VIEWS ? 6
+    : this->ViewMode == THREE_AXIS_DIRECTIONS        ? 3
+                                                      : 1;
+  const int extent[6] = { 0, std::max(this->Resolution[0], 1) - 1, 0,
+    std::max(this->Resolution[1], 1) - 1, 0, views - 1 };
+  vtkInformation* info = outputVector->GetInformationObject(1);
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  return 1;
 }
 
 vtkPiRayCaster::~vtkPiRayCaster()
@@ -242,6 +269,7 @@ int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
   // The surface: from the input's model, or the one set.
   vtkSmartPointer<vtkPiSurface> surface = this->PiSurface;
@@ -474,13 +502,29 @@ int vtkPiRayCaster::RequestData(
   vtkNew<vtkIntArray> factor;
   factor->SetName("Factor");
   factor->SetNumberOfTuples(n);
+  const double probe = 1e-3 * size;
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType k = begin; k < end; ++k)
     {
       const Hit& hit = hits[k];
-      double nrm[3], g;
+      double nrm[3], g, logGradient;
       int nearest;
-      kernel->EvaluateVertex(hit.P, nrm, g, nearest);
+      kernel->EvaluateVertex(hit.P, nrm, g, nearest, &logGradient);
+      // Singular: F grows faster than linearly away from the hit. Compare |∇F|·h with
+      // the largest |F| at p ± h·e_i (h = 1e-3 of the model size), in logarithms.
+      double logProbe = -std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 6; ++a)
+      {
+        double q[3] = { hit.P[0], hit.P[1], hit.P[2] };
+        q[a / 2] += (a % 2 ? probe : -probe);
+        double logAbs;
+        if (kernel->EvaluateSignAndLog(q, logAbs) != 0)
+        {
+          logProbe = std::max(logProbe, logAbs);
+        }
+      }
+      singular->SetValue(
+        k, logGradient + std::log(probe) <= std::log(this->SingularTolerance) + logProbe ? 1 : 0);
       points->SetPoint(k, hit.P);
       normals->SetTuple3(k, nrm[0], nrm[1], nrm[2]);
       gradient->SetValue(k, g);
@@ -493,15 +537,6 @@ int vtkPiRayCaster::RequestData(
       factor->SetValue(k, nearest);
     }
   });
-  double largest = 0.0;
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    largest = std::max(largest, gradient->GetValue(k));
-  }
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    singular->SetValue(k, gradient->GetValue(k) <= this->SingularTolerance * largest ? 1 : 0);
-  }
 
   vtkNew<vtkCellArray> verts;
   for (vtkIdType k = 0; k < n; ++k)
@@ -541,12 +576,67 @@ int vtkPiRayCaster::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
+  if (image)
+  {
+    this->Shade(views, hits, normals, singular, image);
+  }
   if (n == 0)
   {
     vtkWarningMacro(<< "No ray hits the Pi-surface");
   }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+void vtkPiRayCaster::Shade(const std::vector<View>& views, const std::vector<Hit>& hits,
+  vtkFloatArray* normals, vtkUnsignedCharArray* singular, vtkImageData* image)
+{
+  const int w = this->Resolution[0], h = this->Resolution[1];
+  const int count = static_cast<int>(views.size());
+  image->SetDimensions(w, h, count);
+  image->SetOrigin(0, 0, 0);
+  image->SetSpacing(1, 1, 1);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("Shading");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(vtkIdType(w) * h * count);
+  rgb->Fill(255); // background: white
+  vtkNew<vtkDoubleArray> depth;
+  depth->SetName("Depth");
+  depth->SetNumberOfTuples(vtkIdType(w) * h * count);
+  depth->Fill(-1.0); // no hit
+  for (size_t k = 0; k < hits.size(); ++k)
+  {
+    const Hit& hit = hits[k];
+    if (hit.Index != 0)
+    {
+      continue;
+    }
+    const View& v = views[hit.View];
+    const vtkIdType id = (vtkIdType(hit.View) * h + hit.J) * w + hit.I;
+    depth->SetValue(id, hit.T);
+    if (singular->GetValue(static_cast<vtkIdType>(k)))
+    {
+      rgb->SetTypedTuple(id, std::array<unsigned char, 3>{ 220, 30, 30 }.data());
+      continue;
+    }
+    // A headlight: light along the ray, Lambert plus a Phong highlight, two-sided.
+    double d[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = v.Perspective ? v.D[c] + hit.I * v.U[c] + hit.J * v.V[c] : v.D[c];
+    }
+    vtkMath::Normalize(d);
+    float nf[3];
+    normals->GetTypedTuple(static_cast<vtkIdType>(k), nf);
+    const double lambert = std::fabs(nf[0] * d[0] + nf[1] * d[1] + nf[2] * d[2]);
+    const double value = 0.12 + 0.68 * lambert + 0.2 * std::pow(lambert, 30);
+    const unsigned char c = static_cast<unsigned char>(std::min(255.0, 255.0 * value));
+    const unsigned char tint[3] = { c, c, static_cast<unsigned char>(std::min(255, c + 12)) };
+    rgb->SetTypedTuple(id, tint);
+  }
+  image->GetPointData()->SetScalars(rgb);
+  image->GetPointData()->AddArray(depth);
 }
 
 void vtkPiRayCaster::PrintSelf(ostream& os, vtkIndent indent)

@@ -35,8 +35,11 @@
  *
  * Output (points with one vertex each), point data: `Normals` (unit gradient),
  * `GradientMagnitude`, `Depth`, `PixelIndex` (i, j), `ViewIndex`, `HitIndex`
- * (0 = nearest), `Singular` (|∇F| at most SingularTolerance, default 1e-3, times the
- * largest |∇F| among the hits: apices, creases, self-intersections), `Tangent` and
+ * (0 = nearest), `Singular` (the gradient vanishes: |∇F|·h is at most
+ * SingularTolerance, default 0.1, times the largest |F| at the six points p ± h·e_i,
+ * h = 1e-3 of the model size; F then grows faster than linearly away from p, as at
+ * apices, creases and self-intersections; the test is scale-free, so it holds for
+ * products whose |∇F| varies by orders of magnitude over the surface), `Tangent` and
  * `Factor` (the primitive nearest to zero there). Field data: `PiSurfaceModel` and
  * `PiRayViews` (16 numbers per view: type (0 axis/parallel, 1 perspective), w, h, the
  * ray origin of pixel (0, 0) (the eye for perspective), the per-pixel steps along u
@@ -46,7 +49,12 @@
  * The Pi-surface comes from the input's `PiSurfaceModel` field data (the model reader,
  * the Pi Surface source) when an input is connected, otherwise from SetPiSurface.
  *
- * @warning Not yet: the shaded image output and the ray benchmark (see the README).
+ * Output port 1 (vtkImageData, w × h × number of views, one slice per view, unit
+ * spacing): the paper's immediate visualization of the first hits, `Shading` (RGB: a
+ * headlight, Lambert plus a Phong highlight from the exact normals; singular pixels
+ * red; white where the ray misses) and `Depth` (−1 where it misses).
+ *
+ * @warning Not yet: the ray benchmark (see the README).
  *
  * @sa vtkPiSurface vtkPiFlyingEdges
  */
@@ -56,7 +64,19 @@
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <vector> // for std::vector
+
+class vtkFloatArray;
+class vtkImageData;
 class vtkPiSurface;
+class vtkUnsignedCharArray;
+#ifndef __VTK_WRAP__
+namespace vtkPiRayCasterDetail
+{
+struct View;
+struct Hit;
+}
+#endif
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiRayCaster : public vtkPolyDataAlgorithm
 {
@@ -128,8 +148,8 @@ public:
   ///@}
 
   ///@{
-  /// Hits with |∇F| at most this fraction of the largest |∇F| among the hits are
-  /// Singular (default 1e-3).
+  /// A hit is Singular when |∇F|·h is at most this fraction of the largest |F| at
+  /// p ± h·e_i, h = 1e-3 of the model size (default 0.1).
   vtkSetMacro(SingularTolerance, double);
   vtkGetMacro(SingularTolerance, double);
   ///@}
@@ -141,6 +161,8 @@ protected:
   ~vtkPiRayCaster() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void ReportReferences(vtkGarbageCollector*) override;
 
@@ -155,9 +177,15 @@ protected:
   double ViewAngle = 30.0;
   bool ParallelProjection = false;
   double ParallelScale = 1.0;
-  double SingularTolerance = 1e-3;
+  double SingularTolerance = 0.1;
 
 private:
+#ifndef __VTK_WRAP__
+  // Output port 1: the shaded first hits and their depth, one slice per view.
+  void Shade(const std::vector<vtkPiRayCasterDetail::View>& views,
+    const std::vector<vtkPiRayCasterDetail::Hit>& hits, vtkFloatArray* normals,
+    vtkUnsignedCharArray* singular, vtkImageData* image);
+#endif
   vtkPiRayCaster(const vtkPiRayCaster&) = delete;
   void operator=(const vtkPiRayCaster&) = delete;
 };

@@ -302,8 +302,8 @@ double ProductKernel::EvaluateCompressed(const double p[3]) const
   return std::copysign(value, fm);
 }
 
-void ProductKernel::EvaluateVertex(
-  const double p[3], double normal[3], double& gradientNorm, int& nearest) const
+void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
+  int& nearest, double* logGradientNorm) const
 {
   ScaledProduct s;
   double gi[3];
@@ -325,6 +325,11 @@ void ProductKernel::EvaluateVertex(
   }
   const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
   gradientNorm = SafeLdexp(gn, s.E);
+  if (logGradientNorm)
+  {
+    *logGradientNorm = gn > 0 ? std::log(gn) + static_cast<double>(s.E) * std::log(2.0)
+                              : -std::numeric_limits<double>::infinity();
+  }
   for (int k = 0; k < 3; ++k)
   {
     normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;

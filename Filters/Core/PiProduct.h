@@ -79,8 +79,10 @@ public:
   /// where |F| is small. Value only (no gradient): the cheap function for root finding.
   double EvaluateCompressed(const double p[3]) const;
   /// At a vertex, in one pass over the factors: the unit normal ∇F/|∇F| (0 where
-  /// ∇F = 0), |∇F| (clamped to DBL_MAX) and the nearest factor (see NearestFactor).
-  void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest) const;
+  /// ∇F = 0), |∇F| (clamped to DBL_MAX), the nearest factor (see NearestFactor) and,
+  /// if asked, ln|∇F| without clamping (−inf where ∇F = 0).
+  void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest,
+    double* logGradientNorm = nullptr) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.
