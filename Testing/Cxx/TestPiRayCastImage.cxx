@@ -8,6 +8,8 @@
 #include "vtkExtractVOI.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkTrivialProducer.h"
 #include "vtkTesting.h"
 
 #include <cstdlib>
@@ -44,12 +46,18 @@ int TestPiRayCastImage(int argc, char* argv[])
   slice->SetInputConnection(caster->GetOutputPort(1));
   slice->SetVOI(0, 319, 0, 239, 0, 0);
   slice->Update();
+  // Compare the colours only (the Depth channel is checked elsewhere).
+  vtkNew<vtkImageData> colours;
+  colours->ShallowCopy(slice->GetOutput());
+  colours->GetPointData()->RemoveArray("Depth");
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(colours);
 
   vtkNew<vtkTesting> testing;
   for (int i = 11; i < argc; ++i)
   {
     testing->AddArgument(argv[i]);
   }
-  const int result = testing->RegressionTest(slice, 10.0);
+  const int result = testing->RegressionTest(producer, 10.0);
   return result == vtkTesting::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
 }
