@@ -91,6 +91,7 @@ struct CastRows
   bool AllHits;
   double Tolerance;
   std::vector<std::vector<Hit>>* Rows; // per (view, j)
+  std::vector<int> Counts;             // coefficients per factor along a line
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
 
@@ -118,18 +119,19 @@ struct CastRows
     }
     // Restrict about the entry point: t' = t − t0.
     const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
-    std::vector<pisurf::RayRoot> roots;
+    thread_local std::vector<pisurf::RayRoot> roots;
+    roots.clear();
     if (this->Kernel->IsPolynomial())
     {
-      std::vector<std::vector<double>> factors(this->Kernel->GetNumberOfFactors());
-      for (size_t f = 0; f < factors.size(); ++f)
-      {
-        factors[f] = this->Kernel->GetFactor(f).Polynomial.RestrictToLine(start, d);
-      }
+      thread_local std::vector<double> coefficients;
+      coefficients.resize(this->Kernel->GetLineCoefficientCount());
+      this->Kernel->RestrictLine(start, d, coefficients.data());
       pisurf::RayRootOptions options;
       options.Tolerance = this->Tolerance;
       options.AllRoots = this->AllHits;
-      pisurf::FindRayRoots(factors, this->Kernel->GetBlending(), 0.0, t1 - t0, options, roots);
+      pisurf::FindRayRoots(coefficients.data(), this->Counts.data(),
+        static_cast<int>(this->Counts.size()), this->Kernel->GetBlending(), 0.0, t1 - t0,
+        options, roots);
     }
     else
     {
@@ -455,7 +457,15 @@ int vtkPiRayCaster::RequestData(
   const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * h;
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
-  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, this, &abort };
+  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, {}, this, &abort };
+  for (size_t f = 0; f < kernel->GetNumberOfFactors(); ++f)
+  {
+    const pisurf::Factor& factor = kernel->GetFactor(f);
+    if (factor.IsPolynomial)
+    {
+      cast.Counts.push_back(std::max(factor.Polynomial.Poly.GetDegree(), 0) + 1);
+    }
+  }
   vtkSMPTools::For(0, rowCount, cast);
   if (abort || this->CheckAbort())
   {

@@ -50,12 +50,13 @@ struct ScaledInterval
   }
 };
 
-// Bernstein coefficients of a polynomial (ascending monomial coefficients in t) on [a, b].
-std::vector<double> ToBernstein(const std::vector<double>& c, double a, double b)
+// Bernstein coefficients on [a, b] of a polynomial given by `count` ascending monomial
+// coefficients in t, into `bern`; `q` is scratch of the same size.
+void ToBernstein(const double* c, int count, double a, double b, double* q, double* bern)
 {
-  const int n = static_cast<int>(c.size()) - 1;
+  const int n = count - 1;
   // q(s) = p(a + (b − a)s): Taylor shift to a, then scale by (b − a)^j.
-  std::vector<double> q(c);
+  std::copy(c, c + count, q);
   for (int i = 0; i < n; ++i)
   {
     for (int k = n - 1; k >= i; --k)
@@ -70,7 +71,6 @@ std::vector<double> ToBernstein(const std::vector<double>& c, double a, double b
     h *= (b - a);
   }
   // Power basis to Bernstein: b_k = Σ_{j<=k} C(k, j) / C(n, j) q_j.
-  std::vector<double> bern(n + 1, 0.0);
   for (int k = 0; k <= n; ++k)
   {
     double ckj = 1.0; // C(k, j)
@@ -84,7 +84,6 @@ std::vector<double> ToBernstein(const std::vector<double>& c, double a, double b
     }
     bern[k] = sum;
   }
-  return bern;
 }
 
 Interval Hull(const double* b, int count)
@@ -102,7 +101,8 @@ Interval Hull(const double* b, int count)
 // De Casteljau at 1/2: the Bernstein coefficients of both halves.
 void Split(const double* b, int count, double* left, double* right)
 {
-  std::vector<double> w(b, b + count);
+  double w[MaxDegree + 1];
+  std::copy(b, b + count, w);
   for (int r = 0; r < count; ++r)
   {
     left[r] = w[0];
@@ -118,23 +118,39 @@ struct Piece
 {
   double A, B;
   int Depth;
-  std::vector<double> Bernstein; // all factors, concatenated
+  size_t Offset; // of its factors' Bernstein coefficients in the pool
+};
+
+// Per-thread work buffers, reused from ray to ray.
+struct Workspace
+{
+  std::vector<double> Pool; // the pieces' coefficients, a stack following the DFS
+  std::vector<Piece> Stack;
+  std::vector<Interval> F, DF;
+  std::vector<ScaledInterval> Prefix, Suffix;
+  std::vector<size_t> Offsets;
+  double Scratch[MaxDegree + 1];
 };
 
 class Solver
 {
 public:
-  Solver(const std::vector<std::vector<double>>& factors, double r, const RayRootOptions& o)
-    : Factors(factors)
+  Solver(const double* coefficients, const int* counts, int factors, double r,
+    const RayRootOptions& o, Workspace& w)
+    : Coefficients(coefficients)
+    , Counts(counts)
+    , N(factors)
     , R(r)
     , Options(o)
+    , W(w)
   {
-    for (const auto& f : factors)
+    w.Offsets.resize(factors + 1);
+    w.Offsets[0] = 0;
+    for (int i = 0; i < factors; ++i)
     {
-      this->Offsets.push_back(this->Total);
-      this->Counts.push_back(static_cast<int>(f.size()));
-      this->Total += f.size();
+      w.Offsets[i + 1] = w.Offsets[i] + counts[i];
     }
+    this->Total = w.Offsets[factors];
   }
 
   // sign(F)·ln(1 + |F|) at t, without overflow.
@@ -142,9 +158,10 @@ public:
   {
     double m = 1.0;
     long e = 0;
-    for (const auto& f : this->Factors)
+    for (int i = 0; i < this->N; ++i)
     {
-      const double v = EvaluateUnivariate(f.data(), static_cast<int>(f.size()), t);
+      const double v =
+        EvaluateUnivariate(this->Coefficients + this->W.Offsets[i], this->Counts[i], t);
       if (v == 0.0)
       {
         m = 0.0;
@@ -183,66 +200,77 @@ public:
     return std::copysign(std::log1p(std::fabs(F)), F);
   }
 
+  const double* Bernstein(const Piece& p, int i) const
+  {
+    return this->W.Pool.data() + p.Offset + this->W.Offsets[i];
+  }
+
   // +1/−1: F has that sign on the whole piece; 0: it may vanish there.
   int Sign(const Piece& p) const
   {
-    std::vector<Interval> enclosures(this->Factors.size());
-    for (size_t i = 0; i < this->Factors.size(); ++i)
+    this->W.F.resize(this->N);
+    for (int i = 0; i < this->N; ++i)
     {
-      enclosures[i] = Hull(p.Bernstein.data() + this->Offsets[i], this->Counts[i]);
+      this->W.F[i] = Hull(this->Bernstein(p, i), this->Counts[i]);
     }
-    return SignOfProductMinus(enclosures, this->R);
+    return SignOfProductMinus(this->W.F, this->R);
   }
 
-  // True if F' cannot vanish on the piece (so F is strictly monotone there).
+  // True if F' cannot vanish on the piece (so F is strictly monotone there). Uses the
+  // factor enclosures Sign() left in W.F.
   bool Monotone(const Piece& p) const
   {
-    const size_t n = this->Factors.size();
-    std::vector<Interval> f(n), df(n);
-    for (size_t i = 0; i < n; ++i)
+    const int n = this->N;
+    std::vector<Interval>& f = this->W.F;
+    std::vector<Interval>& df = this->W.DF;
+    df.resize(n);
+    for (int i = 0; i < n; ++i)
     {
-      const double* b = p.Bernstein.data() + this->Offsets[i];
+      const double* b = this->Bernstein(p, i);
       const int count = this->Counts[i];
-      f[i] = Hull(b, count);
       if (count < 2)
       {
         df[i] = { 0.0, 0.0 };
         continue;
       }
       // p' in Bernstein form on [A, B]: (count − 1)(b_{k+1} − b_k)/(B − A).
-      std::vector<double> d(count - 1);
+      double* d = this->W.Scratch;
       for (int k = 0; k + 1 < count; ++k)
       {
         d[k] = (count - 1) * (b[k + 1] - b[k]) / (p.B - p.A);
       }
-      df[i] = Hull(d.data(), count - 1);
+      df[i] = Hull(d, count - 1);
     }
     // Σ_i p_i' Π_{j≠i} p_j with prefix and suffix products, scaled.
-    std::vector<ScaledInterval> prefix(n + 1), suffix(n + 1);
-    for (size_t i = 0; i < n; ++i)
+    std::vector<ScaledInterval>& prefix = this->W.Prefix;
+    std::vector<ScaledInterval>& suffix = this->W.Suffix;
+    prefix.assign(n + 1, ScaledInterval());
+    suffix.assign(n + 1, ScaledInterval());
+    for (int i = 0; i < n; ++i)
     {
       prefix[i + 1] = prefix[i];
       prefix[i + 1].Multiply(f[i]);
     }
-    for (size_t i = n; i > 0; --i)
+    for (int i = n; i > 0; --i)
     {
       suffix[i - 1] = suffix[i];
       suffix[i - 1].Multiply(f[i - 1]);
     }
-    std::vector<ScaledInterval> terms(n);
+    // Terms with their exponents; summed at the largest exponent.
     long top = std::numeric_limits<long>::min();
-    for (size_t i = 0; i < n; ++i)
+    for (int i = 0; i < n; ++i)
     {
-      terms[i] = prefix[i];
-      terms[i].Multiply(df[i]);
-      const ScaledInterval& s = suffix[i + 1];
-      terms[i].Multiply({ s.Lo, s.Hi });
-      terms[i].E += s.E;
-      top = std::max(top, terms[i].E);
+      ScaledInterval t = prefix[i];
+      t.Multiply(df[i]);
+      t.Multiply({ suffix[i + 1].Lo, suffix[i + 1].Hi });
+      t.E += suffix[i + 1].E;
+      prefix[i] = t; // prefix[i] is not needed any more: reuse it for the term
+      top = std::max(top, t.E);
     }
     double lo = 0.0, hi = 0.0;
-    for (const ScaledInterval& t : terms)
+    for (int i = 0; i < n; ++i)
     {
+      const ScaledInterval& t = prefix[i];
       const long shift = std::max<long>(t.E - top, -2000);
       lo += std::ldexp(t.Lo, static_cast<int>(shift));
       hi += std::ldexp(t.Hi, static_cast<int>(shift));
@@ -294,19 +322,21 @@ public:
 
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
   {
-    std::vector<Piece> stack;
-    Piece first{ t0, t1, 0, {} };
-    first.Bernstein.reserve(this->Total);
-    for (const auto& f : this->Factors)
+    std::vector<double>& pool = this->W.Pool;
+    std::vector<Piece>& stack = this->W.Stack;
+    stack.clear();
+    pool.resize(this->Total);
+    for (int i = 0; i < this->N; ++i)
     {
-      const std::vector<double> b = ToBernstein(f, t0, t1);
-      first.Bernstein.insert(first.Bernstein.end(), b.begin(), b.end());
+      ToBernstein(this->Coefficients + this->W.Offsets[i], this->Counts[i], t0, t1,
+        this->W.Scratch, pool.data() + this->W.Offsets[i]);
     }
-    stack.push_back(std::move(first));
+    stack.push_back({ t0, t1, 0, 0 });
     while (!stack.empty())
     {
-      Piece p = std::move(stack.back());
+      const Piece p = stack.back();
       stack.pop_back();
+      pool.resize(p.Offset + this->Total); // drop what finished subtrees used
       if (this->Sign(p) != 0)
       {
         continue; // no root in this piece
@@ -340,16 +370,20 @@ public:
         }
         continue;
       }
-      // Split; push the right half first so the left (smaller t) is processed first.
-      Piece left{ p.A, 0.5 * (p.A + p.B), p.Depth + 1, std::vector<double>(this->Total) };
-      Piece right{ left.B, p.B, p.Depth + 1, std::vector<double>(this->Total) };
-      for (size_t i = 0; i < this->Factors.size(); ++i)
+      // Split; the right half goes below the left on the stack, so the left (smaller t)
+      // is processed first. Their coefficients go after this piece's in the pool, the
+      // right half's first: popping the left one truncates the pool above its own.
+      const size_t right = p.Offset + this->Total, left = right + this->Total;
+      pool.resize(left + this->Total);
+      for (int i = 0; i < this->N; ++i)
       {
-        Split(p.Bernstein.data() + this->Offsets[i], this->Counts[i],
-          left.Bernstein.data() + this->Offsets[i], right.Bernstein.data() + this->Offsets[i]);
+        const size_t o = this->W.Offsets[i];
+        Split(pool.data() + p.Offset + o, this->Counts[i], pool.data() + left + o,
+          pool.data() + right + o);
       }
-      stack.push_back(std::move(right));
-      stack.push_back(std::move(left));
+      const double mid = 0.5 * (p.A + p.B);
+      stack.push_back({ mid, p.B, p.Depth + 1, right });
+      stack.push_back({ p.A, mid, p.Depth + 1, left });
     }
   }
 
@@ -365,39 +399,57 @@ private:
     roots.push_back(root);
   }
 
-  const std::vector<std::vector<double>>& Factors;
+  const double* Coefficients;
+  const int* Counts;
+  int N;
   double R;
   RayRootOptions Options;
-  std::vector<size_t> Offsets;
-  std::vector<int> Counts;
+  Workspace& W;
   size_t Total = 0;
 };
+}
+
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
+  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
+{
+  if (!std::isfinite(r) || !std::isfinite(t0) || !std::isfinite(t1) || !(t0 <= t1) ||
+    !(options.Tolerance > 0) || factors < 0)
+  {
+    return false;
+  }
+  size_t total = 0;
+  for (int i = 0; i < factors; ++i)
+  {
+    if (counts[i] < 1 || counts[i] > MaxDegree + 1)
+    {
+      return false;
+    }
+    total += counts[i];
+  }
+  for (size_t k = 0; k < total; ++k)
+  {
+    if (!std::isfinite(coefficients[k]))
+    {
+      return false;
+    }
+  }
+  roots.clear();
+  thread_local Workspace workspace;
+  Solver(coefficients, counts, factors, r, options, workspace).Run(t0, t1, roots);
+  return true;
 }
 
 bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0,
   double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
 {
-  if (!std::isfinite(r) || !std::isfinite(t0) || !std::isfinite(t1) || !(t0 <= t1) ||
-    !(options.Tolerance > 0))
-  {
-    return false;
-  }
+  std::vector<double> flat;
+  std::vector<int> counts;
   for (const auto& f : factors)
   {
-    if (f.empty())
-    {
-      return false;
-    }
-    for (double c : f)
-    {
-      if (!std::isfinite(c))
-      {
-        return false;
-      }
-    }
+    flat.insert(flat.end(), f.begin(), f.end());
+    counts.push_back(static_cast<int>(f.size()));
   }
-  roots.clear();
-  Solver(factors, r, options).Run(t0, t1, roots);
-  return true;
+  return FindRayRoots(flat.data(), counts.data(), static_cast<int>(counts.size()), r, t0, t1,
+    options, roots);
 }
 }

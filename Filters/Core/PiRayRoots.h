@@ -46,6 +46,11 @@ struct RayRootOptions
 /// coefficients of p_i. Returns false (roots untouched) if an input is not finite.
 bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0,
   double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
+/// The same with the factors' coefficients concatenated (`counts[i]` of them for p_i),
+/// as ProductKernel::RestrictLine writes them. Allocation-free after warm-up (per-thread
+/// work buffers), for casting millions of rays.
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
+  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
 }
 
 #endif
