@@ -3,6 +3,7 @@
 
 #include "PiModel.h"
 #include "PiProduct.h"
+#include "PiRayRoots.h"
 #include "vtkPiSurface.h"
 
 #include "vtkAppendPolyData.h"
@@ -759,52 +760,14 @@ struct VertexAttributes
     }
     // |F| below 1e-12 of its values at the ends: the root is within ~1e-12 of an edge.
     const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
-    double s0 = 0, s1 = 1;
-    int side = 0;
     const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
-    double q[3];
-    for (int it = 0; it < 100 && (s1 - s0) * length > this->Tolerance; ++it)
-    {
-      double s = 0.5 * (s0 + s1);
-      if (std::isfinite(va) && std::isfinite(vb))
-      {
-        const double secant = s1 - vb * (s1 - s0) / (vb - va);
-        if (secant > s0 && secant < s1)
-        {
-          s = secant;
-        }
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        q[k] = a[k] + s * (b[k] - a[k]);
-      }
-      const double v = phi(q);
-      if (std::fabs(v) <= small)
-      {
-        return s;
-      }
-      if ((v < 0) == (va < 0))
-      {
-        s0 = s;
-        va = v;
-        if (side == -1)
-        {
-          vb *= 0.5; // Illinois: the stale end is halved
-        }
-        side = -1;
-      }
-      else
-      {
-        s1 = s;
-        vb = v;
-        if (side == 1)
-        {
-          va *= 0.5;
-        }
-        side = 1;
-      }
-    }
-    return 0.5 * (s0 + s1);
+    return pisurf::BracketedRoot(
+      [&](double s) {
+        const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
+          a[2] + s * (b[2] - a[2]) };
+        return phi(q);
+      },
+      0.0, 1.0, va, vb, this->Tolerance / length, small);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)

@@ -279,45 +279,11 @@ public:
     return lo - slack > 0.0 || hi + slack < 0.0;
   }
 
-  // The single root of a monotone piece with a sign change: Illinois with bisection.
+  // The single root of a monotone piece with a sign change.
   double Refine(double a, double b, double va, double vb) const
   {
-    int side = 0;
-    for (int it = 0; it < 200 && b - a > this->Options.Tolerance; ++it)
-    {
-      double t = 0.5 * (a + b);
-      const double secant = b - vb * (b - a) / (vb - va);
-      if (std::isfinite(secant) && secant > a && secant < b)
-      {
-        t = secant;
-      }
-      const double v = this->Compressed(t);
-      if (v == 0.0)
-      {
-        return t;
-      }
-      if ((v < 0) == (va < 0))
-      {
-        a = t;
-        va = v;
-        if (side == -1)
-        {
-          vb *= 0.5;
-        }
-        side = -1;
-      }
-      else
-      {
-        b = t;
-        vb = v;
-        if (side == 1)
-        {
-          va *= 0.5;
-        }
-        side = 1;
-      }
-    }
-    return 0.5 * (a + b);
+    return BracketedRoot([this](double t) { return this->Compressed(t); }, a, b, va, vb,
+      this->Options.Tolerance, 0.0);
   }
 
   void Run(double t0, double t1, std::vector<RayRoot>& roots)

@@ -24,10 +24,57 @@
 #ifndef PiRayRoots_h
 #define PiRayRoots_h
 
+#include <cmath>
 #include <vector>
 
 namespace pisurf
 {
+
+/// The root of phi in [a, b], where phi(a) = va and phi(b) = vb have opposite signs:
+/// regula falsi with the Illinois modification (a stale end's value is halved), and
+/// bisection where the secant leaves the bracket. Stops when the bracket is at most
+/// `width` long or |phi| <= `small` (returns that point), after at most 200 steps.
+template <class Function>
+double BracketedRoot(
+  const Function& phi, double a, double b, double va, double vb, double width, double small)
+{
+  int side = 0;
+  for (int it = 0; it < 200 && b - a > width; ++it)
+  {
+    double t = 0.5 * (a + b);
+    const double secant = b - vb * (b - a) / (vb - va);
+    if (std::isfinite(secant) && secant > a && secant < b)
+    {
+      t = secant;
+    }
+    const double v = phi(t);
+    if (std::fabs(v) <= small)
+    {
+      return t;
+    }
+    if ((v < 0) == (va < 0))
+    {
+      a = t;
+      va = v;
+      if (side == -1)
+      {
+        vb *= 0.5;
+      }
+      side = -1;
+    }
+    else
+    {
+      b = t;
+      vb = v;
+      if (side == 1)
+      {
+        va *= 0.5;
+      }
+      side = 1;
+    }
+  }
+  return 0.5 * (a + b);
+}
 
 struct RayRoot
 {
