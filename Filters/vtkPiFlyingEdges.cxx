@@ -917,25 +917,10 @@ int vtkPiFlyingEdges::RequestData(
   }
 
   double bounds[6];
-  const bool automatic =
-    std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; });
-  if (automatic)
+  if (!this->PiSurface->ResolveBounds(this->Bounds, bounds))
   {
-    if (!this->PiSurface->GetModelBounds(bounds))
-    {
-      vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
-      return 0;
-    }
-  }
-  else
-  {
-    if (!pisurf::ValidBounds(this->Bounds))
-    {
-      vtkErrorMacro(<< "Bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero "
-                       "for the model's bounds)");
-      return 0;
-    }
-    std::copy(this->Bounds, this->Bounds + 6, bounds);
+    vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
+    return 0;
   }
 
   int resolution = this->Resolution;

@@ -312,22 +312,10 @@ int vtkPiRayCaster::RequestData(
     return 0;
   }
   double b[6];
-  if (std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; }))
+  if (!surface->ResolveBounds(this->Bounds, b))
   {
-    if (!surface->GetModelBounds(b))
-    {
-      vtkErrorMacro(<< "No bounds for the rays: " << surface->GetErrorMessage());
-      return 0;
-    }
-  }
-  else if (!pisurf::ValidBounds(this->Bounds))
-  {
-    vtkErrorMacro(<< "Bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero)");
+    vtkErrorMacro(<< "No bounds for the rays: " << surface->GetErrorMessage());
     return 0;
-  }
-  else
-  {
-    std::copy(this->Bounds, this->Bounds + 6, b);
   }
 
   // The views.

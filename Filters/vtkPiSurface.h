@@ -99,6 +99,11 @@ public:
   /// 12 times; it depends on r through F). Returns false (with an error) otherwise.
   bool GetModelBounds(double bounds[6]);
 
+  /// The region an algorithm works in: `requested` when it is not all zero (it must then
+  /// be valid: finite with x0 < x1, y0 < y1, z0 < z1), else GetModelBounds. False with
+  /// the reason in GetErrorMessage, for the calling algorithm to report.
+  bool ResolveBounds(const double requested[6], double bounds[6]);
+
   ///@{
   /// Named model parameters, forwarded to every vtkPiPrimitive factor (so that
   /// changing "a" moves the cup's handle).
