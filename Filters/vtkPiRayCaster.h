@@ -54,7 +54,8 @@
  * headlight, Lambert plus a Phong highlight from the exact normals; singular pixels
  * red; white where the ray misses) and `Depth` (−1 where it misses).
  *
- * @warning Not yet: the ray benchmark (see the README).
+ * @warning Not yet as fast as intended: about 0.5 M first-hit rays per second on 2
+ * threads (see the ray benchmark in the README).
  *
  * @sa vtkPiSurface vtkPiFlyingEdges
  */
