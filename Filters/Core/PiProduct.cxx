@@ -411,61 +411,14 @@ void ProductKernel::EvaluateLine(
   const double mid = 0.5 * (n - 1);
   const double o[3] = { origin[0] + mid * step[0], origin[1] + mid * step[1],
     origin[2] + mid * step[2] };
-  double m[BlockSize], f[BlockSize];
-  long e[BlockSize];
-  // All factors' restrictions in one buffer: offsets[k] .. offsets[k + 1].
   thread_local std::vector<double> coefficients;
-  thread_local std::vector<size_t> offsets;
-  offsets.assign(this->Factors.size() + 1, 0);
-  for (size_t k = 0; k < this->Factors.size(); ++k)
+  coefficients.resize(this->LineCoefficients);
+  this->RestrictLine(o, step, coefficients.data());
+  for (int i = 0; i < n; ++i)
   {
-    const Factor& f = this->Factors[k];
-    offsets[k + 1] = offsets[k] +
-      (f.IsPolynomial ? static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1 : 0);
-  }
-  coefficients.resize(offsets.back());
-  for (size_t k = 0; k < this->Factors.size(); ++k)
-  {
-    if (this->Factors[k].IsPolynomial)
-    {
-      this->Factors[k].Polynomial.RestrictToLine(o, step, coefficients.data() + offsets[k]);
-    }
-  }
-  for (int start = 0; start < n; start += BlockSize)
-  {
-    const int count = std::min(BlockSize, n - start);
-    std::fill(m, m + count, 1.0);
-    std::fill(e, e + count, 0L);
-    for (size_t k = 0; k < this->Factors.size(); ++k)
-    {
-      if (this->Factors[k].IsPolynomial)
-      {
-        const double* c = coefficients.data() + offsets[k];
-        const int nc = static_cast<int>(offsets[k + 1] - offsets[k]);
-        for (int i = 0; i < count; ++i)
-        {
-          f[i] = EvaluateUnivariate(c, nc, (start + i) - mid);
-        }
-      }
-      else
-      {
-        for (int i = 0; i < count; ++i)
-        {
-          const double t = start + i;
-          const double p[3] = { origin[0] + t * step[0], origin[1] + t * step[1],
-            origin[2] + t * step[2] };
-          f[i] = this->Factors[k].Generic(p, nullptr);
-        }
-      }
-      for (int i = 0; i < count; ++i)
-      {
-        Accumulate(m[i], e[i], f[i]);
-      }
-    }
-    for (int i = 0; i < count; ++i)
-    {
-      values[start + i] = this->Finish(m[i], e[i]);
-    }
+    const double p[3] = { origin[0] + i * step[0], origin[1] + i * step[1],
+      origin[2] + i * step[2] };
+    values[i] = this->EvaluateRestricted(coefficients.data(), i - mid, p);
   }
 }
 
