@@ -345,22 +345,13 @@ int vtkPiRayCaster::RequestData(
   switch (this->ViewMode)
   {
     case PLUS_X:
-      axisView(0, true);
-      break;
     case MINUS_X:
-      axisView(0, false);
-      break;
     case PLUS_Y:
-      axisView(1, true);
-      break;
     case MINUS_Y:
-      axisView(1, false);
-      break;
     case PLUS_Z:
-      axisView(2, true);
-      break;
     case MINUS_Z:
-      axisView(2, false);
+      // The enumeration runs +X, −X, +Y, −Y, +Z, −Z.
+      axisView((this->ViewMode - PLUS_X) / 2, (this->ViewMode - PLUS_X) % 2 == 0);
       break;
     case SIX_AXIS_VIEWS:
     case THREE_AXIS_DIRECTIONS:
