@@ -3,7 +3,7 @@
 
 #include "PiModel.h"
 #include "PiProduct.h"
-#include "PiRayRoots.h"
+#include "PiRayCast.h"
 #include "vtkPiSurface.h"
 
 #include "vtkCellArray.h"
@@ -91,7 +91,7 @@ struct CastRows
   bool AllHits;
   double Tolerance;
   std::vector<std::vector<Hit>>* Rows; // per (view, j)
-  std::vector<int> Counts;             // coefficients per factor along a line
+  const pisurf::RayCaster* Caster;
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
 
@@ -120,53 +120,10 @@ struct CastRows
     // Restrict about the entry point: t' = t − t0.
     const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
     thread_local std::vector<pisurf::RayRoot> roots;
-    roots.clear();
-    if (this->Kernel->IsPolynomial())
-    {
-      thread_local std::vector<double> coefficients;
-      coefficients.resize(this->Kernel->GetLineCoefficientCount());
-      this->Kernel->RestrictLine(start, d, coefficients.data());
-      pisurf::RayRootOptions options;
-      options.Tolerance = this->Tolerance;
-      options.AllRoots = this->AllHits;
-      pisurf::FindRayRoots(coefficients.data(), this->Counts.data(),
-        static_cast<int>(this->Counts.size()), this->Kernel->GetBlending(), 0.0, t1 - t0,
-        options, roots);
-    }
-    else
-    {
-      // Documented fallback for non-polynomial factors: a sign scan and bisection.
-      const int n = 4096;
-      auto at = [&](double t) {
-        const double p[3] = { start[0] + t * d[0], start[1] + t * d[1], start[2] + t * d[2] };
-        return this->Kernel->EvaluateCompressed(p);
-      };
-      double ta = 0.0, va = at(0.0);
-      for (int s = 1; s <= n && (this->AllHits || roots.empty()); ++s)
-      {
-        const double tb = (t1 - t0) * s / n, vb = at(tb);
-        if ((va < 0) != (vb < 0))
-        {
-          double lo = ta, hi = tb, vlo = va;
-          for (int it = 0; it < 100 && hi - lo > this->Tolerance; ++it)
-          {
-            const double mid = 0.5 * (lo + hi), vm = at(mid);
-            if ((vm < 0) == (vlo < 0))
-            {
-              lo = mid;
-              vlo = vm;
-            }
-            else
-            {
-              hi = mid;
-            }
-          }
-          roots.push_back({ 0.5 * (lo + hi), false });
-        }
-        ta = tb;
-        va = vb;
-      }
-    }
+    pisurf::RayRootOptions options;
+    options.Tolerance = this->Tolerance;
+    options.AllRoots = this->AllHits;
+    this->Caster->Cast(start, d, t1 - t0, options, roots);
     int index = 0;
     for (const pisurf::RayRoot& r : roots)
     {
@@ -436,15 +393,8 @@ int vtkPiRayCaster::RequestData(
   const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * h;
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
-  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, {}, this, &abort };
-  for (size_t f = 0; f < kernel->GetNumberOfFactors(); ++f)
-  {
-    const pisurf::Factor& factor = kernel->GetFactor(f);
-    if (factor.IsPolynomial)
-    {
-      cast.Counts.push_back(std::max(factor.Polynomial.Poly.GetDegree(), 0) + 1);
-    }
-  }
+  const pisurf::RayCaster caster(*kernel);
+  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, &caster, this, &abort };
   vtkSMPTools::For(0, rowCount, cast);
   if (abort || this->CheckAbort())
   {
@@ -499,21 +449,9 @@ int vtkPiRayCaster::RequestData(
       double nrm[3], g, logGradient;
       int nearest;
       kernel->EvaluateVertex(hit.P, nrm, g, nearest, &logGradient);
-      // Singular: F grows faster than linearly away from the hit. Compare |∇F|·h with
-      // the largest |F| at p ± h·e_i (h = 1e-3 of the model size), in logarithms.
-      double logProbe = -std::numeric_limits<double>::infinity();
-      for (int a = 0; a < 6; ++a)
-      {
-        double q[3] = { hit.P[0], hit.P[1], hit.P[2] };
-        q[a / 2] += (a % 2 ? probe : -probe);
-        double logAbs;
-        if (kernel->EvaluateSignAndLog(q, logAbs) != 0)
-        {
-          logProbe = std::max(logProbe, logAbs);
-        }
-      }
+      // Singular: F grows faster than linearly away from the hit.
       singular->SetValue(
-        k, logGradient + std::log(probe) <= std::log(this->SingularTolerance) + logProbe ? 1 : 0);
+        k, caster.IsSingular(hit.P, logGradient, probe, this->SingularTolerance) ? 1 : 0);
       points->SetPoint(k, hit.P);
       normals->SetTuple3(k, nrm[0], nrm[1], nrm[2]);
       gradient->SetValue(k, g);
