@@ -482,11 +482,12 @@ int vtkPiRayCaster::RequestData(
 
   vtkNew<vtkDoubleArray> viewData;
   viewData->SetName("PiRayViews");
-  viewData->SetNumberOfComponents(16);
+  viewData->SetNumberOfComponents(17);
   for (const View& v : views)
   {
-    const double t[16] = { v.Perspective ? 1.0 : 0.0, double(v.W), double(v.H), v.O[0], v.O[1],
-      v.O[2], v.U[0], v.U[1], v.U[2], v.V[0], v.V[1], v.V[2], v.D[0], v.D[1], v.D[2], v.Length };
+    const double t[17] = { v.Perspective ? 1.0 : 0.0, double(v.W), double(v.H), v.O[0], v.O[1],
+      v.O[2], v.U[0], v.U[1], v.U[2], v.V[0], v.V[1], v.V[2], v.D[0], v.D[1], v.D[2], v.Length,
+      allHits ? 1.0 : 0.0 };
     viewData->InsertNextTuple(t);
   }
   output->GetFieldData()->AddArray(viewData);

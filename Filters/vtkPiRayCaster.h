@@ -41,10 +41,11 @@
  * apices, creases and self-intersections; the test is scale-free, so it holds for
  * products whose |∇F| varies by orders of magnitude over the surface), `Tangent` and
  * `Factor` (the primitive nearest to zero there). Field data: `PiSurfaceModel` and
- * `PiRayViews` (16 numbers per view: type (0 axis/parallel, 1 perspective), w, h, the
+ * `PiRayViews` (17 numbers per view: type (0 axis/parallel, 1 perspective), w, h, the
  * ray origin of pixel (0, 0) (the eye for perspective), the per-pixel steps along u
- * and v, the direction of pixel (0, 0)'s ray, and the segment length), so that a
- * triangulation can rebuild the pixel grid.
+ * and v, the direction of pixel (0, 0)'s ray, the segment length, and 1 if the view
+ * holds all hits, 0 if first hits only), so that vtkPiImageTriangulator can rebuild
+ * the pixel grid.
  *
  * The Pi-surface comes from the input's `PiSurfaceModel` field data (the model reader,
  * the Pi Surface source) when an input is connected, otherwise from SetPiSurface.

@@ -1,0 +1,1434 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPiImageTriangulator.h"
+#include "PiProduct.h"
+#include "PiRayCast.h"
+#include "vtkPiSurface.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMarchingCubesTriangleCases.h"
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+vtkStandardNewMacro(vtkPiImageTriangulator);
+
+namespace
+{
+// Marching-cubes corners and edges in VTK's hexahedron order
+// (vtkMarchingCubesTriangleCases).
+constexpr int Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
+  { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+constexpr int Edge[12][2] = { { 0, 1 }, { 1, 2 }, { 3, 2 }, { 0, 3 }, { 4, 5 }, { 5, 6 },
+  { 7, 6 }, { 4, 7 }, { 0, 4 }, { 1, 5 }, { 3, 7 }, { 2, 6 } };
+
+// A view as vtkPiRayCaster describes it in `PiRayViews`.
+struct View
+{
+  bool Perspective = false;
+  int W = 0, H = 0;
+  double O[3], U[3], V[3], D[3];
+  double Length = 0;
+  bool AllHits = false;
+  int Axis = -1; // an axis view: the axis of its rays, and their sense (±1)
+  int Sense = 0;
+
+  // The ray of pixel (i, j): origin and unit direction.
+  void Ray(double i, double j, double o[3], double d[3]) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      o[k] = this->Perspective ? this->O[k] : this->O[k] + i * this->U[k] + j * this->V[k];
+      d[k] = this->Perspective ? this->D[k] + i * this->U[k] + j * this->V[k] : this->D[k];
+    }
+    vtkMath::Normalize(d);
+  }
+
+  // Continuous pixel coordinates of p; false if p is behind a perspective eye.
+  bool Project(const double p[3], double& i, double& j) const
+  {
+    double w[3] = { p[0] - this->O[0], p[1] - this->O[1], p[2] - this->O[2] };
+    if (this->Perspective)
+    {
+      // p − eye = λ (D + iU + jV), with U and V orthogonal to the view axis.
+      double f[3];
+      vtkMath::Cross(this->U, this->V, f);
+      if (vtkMath::Dot(f, this->D) < 0)
+      {
+        vtkMath::MultiplyScalar(f, -1.0);
+      }
+      const double lambda = vtkMath::Dot(w, f) / vtkMath::Dot(this->D, f);
+      if (!(lambda > 0))
+      {
+        return false;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        w[k] = w[k] / lambda - this->D[k];
+      }
+    }
+    i = vtkMath::Dot(w, this->U) / vtkMath::Dot(this->U, this->U);
+    j = vtkMath::Dot(w, this->V) / vtkMath::Dot(this->V, this->V);
+    return true;
+  }
+
+  // The lateral distance between neighbouring rays at depth t.
+  double Footprint(double t) const
+  {
+    const double s = std::sqrt(std::min(vtkMath::Dot(this->U, this->U), vtkMath::Dot(this->V, this->V)));
+    return this->Perspective ? s * t / vtkMath::Norm(this->D) : s;
+  }
+};
+
+// The input cloud, unpacked.
+struct Cloud
+{
+  vtkIdType N = 0;
+  std::vector<double> P;
+  std::vector<float> Normal;
+  std::vector<int> Pixel, ViewOf, Factor;
+  std::vector<double> Depth;
+  std::vector<unsigned char> Singular, Tangent;
+};
+
+// A vertex of the output: an input hit, or a point computed on F = 0.
+struct Computed
+{
+  std::int64_t Key;
+  double P[3];
+  int View;
+};
+
+// Output keys: input hits are their point id (>= 0), points computed along lattice
+// lines −(index + 1), roots computed on a lattice edge EdgeBit | edge id.
+constexpr std::int64_t EdgeBit = std::int64_t(1) << 62;
+
+// The lattice of RAY_LATTICE: per axis N pixel centres and the two planes of the box.
+struct Lattice
+{
+  int N[3];
+  double H[3], B0[3], B1[3];
+  vtkIdType LineStart[4]; // first line of each axis, and the total
+
+  double X(int a, int m) const
+  {
+    return m <= 0 ? this->B0[a] : m > this->N[a] ? this->B1[a] : this->B0[a] + (m - 0.5) * this->H[a];
+  }
+  // The line of axis a through interior nodes mu (axis a+1) and mv (axis a+2), 1-based.
+  vtkIdType Line(int a, int mu, int mv) const
+  {
+    return this->LineStart[a] + vtkIdType(mv - 1) * this->N[(a + 1) % 3] + (mu - 1);
+  }
+  bool HasLine(int a, int mu, int mv) const
+  {
+    return mu >= 1 && mu <= this->N[(a + 1) % 3] && mv >= 1 && mv <= this->N[(a + 2) % 3];
+  }
+};
+
+struct Sample
+{
+  double X;           // coordinate along the line's axis
+  std::int64_t Code;  // output key
+  bool Tangent;
+  bool operator<(const Sample& o) const { return this->X < o.X || (this->X == o.X && this->Code < o.Code); }
+};
+
+// Reads a point array as doubles; nullptr if absent.
+vtkDataArray* Array(vtkPointData* pd, const char* name, int components)
+{
+  vtkDataArray* a = pd->GetArray(name);
+  return a && a->GetNumberOfComponents() == components ? a : nullptr;
+}
+}
+
+vtkPiImageTriangulator::vtkPiImageTriangulator() = default;
+vtkPiImageTriangulator::~vtkPiImageTriangulator() = default;
+
+int vtkPiImageTriangulator::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+namespace
+{
+// The work of one execution: the cloud, the views, the model, and the output lists.
+struct Triangulation
+{
+  vtkPiImageTriangulator* Algorithm;
+  Cloud C;
+  std::vector<View> Views;
+  std::shared_ptr<const pisurf::ProductKernel> Kernel;
+  std::unique_ptr<pisurf::RayCaster> Caster;
+  double Size = 1;
+  std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
+  std::vector<Computed> Points;        // computed points, by key
+  std::atomic<bool> Abort{ false };
+
+  bool Aborted()
+  {
+    if (vtkSMPTools::GetSingleThread() && this->Algorithm->CheckAbort())
+    {
+      this->Abort = true;
+    }
+    return this->Abort;
+  }
+
+  int Sign(const double p[3]) const
+  {
+    double logAbs;
+    return this->Kernel ? (this->Kernel->EvaluateSignAndLog(p, logAbs) >= 0 ? 1 : 0) : 1;
+  }
+
+  // RAY_LATTICE ------------------------------------------------------------------
+  bool FindLattice(Lattice& L) const;
+  void RunLattice(const Lattice& L);
+
+  // BEST_VIEW --------------------------------------------------------------------
+  void RunBestView(double sheetTolerance);
+};
+
+bool Triangulation::FindLattice(Lattice& L) const
+{
+  // Every view must be an axis view; each defines the lattice along its u and v axes
+  // and the box along its own axis. All of them must agree.
+  bool defined[3] = { false, false, false }, box[3] = { false, false, false };
+  bool axis[3] = { false, false, false };
+  const double tol = 1e-9 * this->Size;
+  auto define = [&](int a, int n, double h, double b0) {
+    if (!(h > 0) || n < 1)
+    {
+      return false;
+    }
+    if (!defined[a])
+    {
+      defined[a] = true;
+      L.N[a] = n;
+      L.H[a] = h;
+      L.B0[a] = b0;
+      return true;
+    }
+    return L.N[a] == n && std::fabs(L.H[a] - h) <= tol && std::fabs(L.B0[a] - b0) <= tol;
+  };
+  double range[3][2];
+  for (const View& v : this->Views)
+  {
+    if (v.Axis < 0)
+    {
+      return false;
+    }
+    const int a = v.Axis, ua = (a + 1) % 3, va = (a + 2) % 3;
+    if (!define(ua, v.W, v.U[ua], v.O[ua] - 0.5 * v.U[ua]) ||
+      !define(va, v.H, v.V[va], v.O[va] - 0.5 * v.V[va]))
+    {
+      return false;
+    }
+    const double lo = v.Sense < 0 ? v.O[a] - v.Length : v.O[a];
+    const double hi = lo + v.Length;
+    if (box[a] && (std::fabs(range[a][0] - lo) > tol || std::fabs(range[a][1] - hi) > tol))
+    {
+      return false;
+    }
+    box[a] = true;
+    axis[a] = true;
+    range[a][0] = lo;
+    range[a][1] = hi;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!axis[a] || !defined[a] ||
+      std::fabs(L.B0[a] - range[a][0]) > tol ||
+      std::fabs(L.B0[a] + L.N[a] * L.H[a] - range[a][1]) > tol)
+    {
+      return false;
+    }
+    L.B1[a] = range[a][1];
+  }
+  L.LineStart[0] = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    L.LineStart[a + 1] = L.LineStart[a] + vtkIdType(L.N[(a + 1) % 3]) * L.N[(a + 2) % 3];
+  }
+  return true;
+}
+
+void Triangulation::RunLattice(const Lattice& L)
+{
+  const double tol = 1e-9 * this->Size;
+  const vtkIdType lines = L.LineStart[3];
+
+  // PASS 1: the hits of every lattice line, sorted along it; duplicates (the same
+  // root seen from both ends of a line) kept once.
+  std::vector<vtkIdType> first(lines + 1, 0);
+  auto lineOf = [&](vtkIdType id) {
+    const View& v = this->Views[this->C.ViewOf[id]];
+    return L.Line(v.Axis, this->C.Pixel[2 * id] + 1, this->C.Pixel[2 * id + 1] + 1);
+  };
+  for (vtkIdType id = 0; id < this->C.N; ++id)
+  {
+    ++first[lineOf(id) + 1];
+  }
+  for (vtkIdType l = 0; l < lines; ++l)
+  {
+    first[l + 1] += first[l];
+  }
+  std::vector<Sample> samples(this->C.N);
+  {
+    std::vector<vtkIdType> fill(first.begin(), first.end() - 1);
+    for (vtkIdType id = 0; id < this->C.N; ++id)
+    {
+      const View& v = this->Views[this->C.ViewOf[id]];
+      samples[fill[lineOf(id)]++] = { this->C.P[3 * id + v.Axis], id, this->C.Tangent[id] != 0 };
+    }
+  }
+
+  // Which part of each line the views have not seen: all-hits views see everything;
+  // a first-hit view looking along −a sees down to its first hit, one along +a up to
+  // its first hit. The hidden part is cast here with the certified root finder.
+  bool allHits[3] = { false, false, false }, minus[3] = { false, false, false },
+       plus[3] = { false, false, false };
+  for (const View& v : this->Views)
+  {
+    allHits[v.Axis] |= v.AllHits;
+    (v.Sense < 0 ? minus : plus)[v.Axis] = true;
+  }
+  std::vector<std::vector<Sample>> hidden(lines);
+  std::atomic<bool> missingModel{ false };
+  vtkSMPTools::For(0, lines, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<pisurf::RayRoot> roots;
+    for (vtkIdType l = begin; l < end && !this->Abort; ++l)
+    {
+      const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
+      Sample* s0 = samples.data() + first[l];
+      Sample* s1 = samples.data() + first[l + 1];
+      std::sort(s0, s1);
+      if (allHits[a])
+      {
+        continue;
+      }
+      double lo = L.B0[a], hi = L.B1[a];
+      bool empty = false;
+      for (int sense = -1; sense <= 1; sense += 2)
+      {
+        if (!(sense < 0 ? minus : plus)[a])
+        {
+          continue;
+        }
+        // The first hit of that view on this line.
+        const Sample* hit = nullptr;
+        for (Sample* s = s0; s != s1; ++s)
+        {
+          if (this->Views[this->C.ViewOf[s->Code]].Sense == sense)
+          {
+            if (!hit || (sense < 0 ? s->X > hit->X : s->X < hit->X))
+            {
+              hit = s;
+            }
+          }
+        }
+        if (!hit)
+        {
+          empty = true; // the view's ray missed: no root anywhere on the line
+        }
+        else if (sense < 0)
+        {
+          hi = hit->X;
+        }
+        else
+        {
+          lo = hit->X;
+        }
+      }
+      if (empty || hi - lo <= 2 * tol)
+      {
+        continue;
+      }
+      if (!this->Caster)
+      {
+        missingModel = true;
+        continue;
+      }
+      const vtkIdType k = l - L.LineStart[a];
+      const int mu = static_cast<int>(k % L.N[(a + 1) % 3]) + 1;
+      const int mv = static_cast<int>(k / L.N[(a + 1) % 3]) + 1;
+      double o[3], d[3] = { 0, 0, 0 };
+      o[a] = lo;
+      o[(a + 1) % 3] = L.X((a + 1) % 3, mu);
+      o[(a + 2) % 3] = L.X((a + 2) % 3, mv);
+      d[a] = 1;
+      pisurf::RayRootOptions options;
+      options.Tolerance = 1e-10 * this->Size;
+      this->Caster->Cast(o, d, hi - lo, options, roots);
+      for (const pisurf::RayRoot& r : roots)
+      {
+        if (r.T > tol && r.T < hi - lo - tol)
+        {
+          hidden[l].push_back({ lo + r.T, 0, r.Tangent });
+        }
+      }
+    }
+  });
+  if (missingModel)
+  {
+    vtkErrorWithObjectMacro(this->Algorithm,
+      << "First-hit views hide part of the surface, and the input carries no "
+         "PiSurfaceModel to compute it: use all hits or keep the model field data");
+    this->Abort = true;
+  }
+  if (this->Abort)
+  {
+    return;
+  }
+  this->Algorithm->UpdateProgress(0.3);
+
+  // The hidden roots become computed points on the rays of a view along their axis;
+  // the lines are merged again.
+  int lineView[3] = { -1, -1, -1 };
+  for (size_t v = this->Views.size(); v-- > 0;)
+  {
+    lineView[this->Views[v].Axis] = static_cast<int>(v);
+  }
+  std::vector<vtkIdType> start(lines + 1, 0);
+  for (vtkIdType l = 0; l < lines; ++l)
+  {
+    start[l + 1] = start[l] + (first[l + 1] - first[l]) + hidden[l].size();
+  }
+  std::vector<Sample> line(start[lines]);
+  for (vtkIdType l = 0; l < lines; ++l)
+  {
+    const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
+    Sample* out = line.data() + start[l];
+    std::copy(samples.begin() + first[l], samples.begin() + first[l + 1], out);
+    Sample* o = out + (first[l + 1] - first[l]);
+    const vtkIdType k = l - L.LineStart[a];
+    for (Sample s : hidden[l])
+    {
+      Computed c;
+      c.Key = -static_cast<std::int64_t>(this->Points.size()) - 1;
+      c.P[a] = s.X;
+      c.P[(a + 1) % 3] = L.X((a + 1) % 3, static_cast<int>(k % L.N[(a + 1) % 3]) + 1);
+      c.P[(a + 2) % 3] = L.X((a + 2) % 3, static_cast<int>(k / L.N[(a + 1) % 3]) + 1);
+      c.View = lineView[a];
+      s.Code = c.Key;
+      this->Points.push_back(c);
+      *o++ = s;
+    }
+    std::sort(out, o);
+    // A root seen from both ends of the line is one sample; the other copy is marked
+    // removed in place, so the line stays sorted.
+    const Sample* kept = nullptr;
+    for (Sample* s = out; s != o; ++s)
+    {
+      if (kept && s->X - kept->X <= tol)
+      {
+        s->Code = INT64_MIN;
+        continue;
+      }
+      kept = s;
+    }
+  }
+  hidden.clear();
+  samples.clear();
+
+  // The valid samples of line l with X in [x0, x1), and the first non-tangent one.
+  auto firstCrossing = [&](vtkIdType l, double x0, double x1) -> const Sample* {
+    const Sample* b = line.data() + start[l];
+    const Sample* e = line.data() + start[l + 1];
+    const Sample* s = std::lower_bound(b, e, Sample{ x0, INT64_MIN, false });
+    for (; s != e && s->X < x1; ++s)
+    {
+      if (s->Code != INT64_MIN && !s->Tangent)
+      {
+        return s;
+      }
+    }
+    return nullptr;
+  };
+
+  // PASS 2: the sign of F (1 outside, 0 inside) at the nodes of every z column:
+  // on a lattice line the parity of the crossings below the node, on the planes of the
+  // box F itself (certified constant on a whole face when interval bounds allow).
+  const int nx = L.N[0] + 2, ny = L.N[1] + 2, nz = L.N[2] + 2;
+  int faceSign[6];
+  for (int f = 0; f < 6; ++f)
+  {
+    double b[6] = { L.B0[0], L.B1[0], L.B0[1], L.B1[1], L.B0[2], L.B1[2] };
+    const int a = f / 2;
+    b[2 * a] = b[2 * a + 1] = (f % 2 ? L.B1[a] : L.B0[a]);
+    const int c = this->Kernel ? this->Kernel->ClassifyBox(b) : 1;
+    faceSign[f] = c == 0 ? -1 : (c > 0 ? 1 : 0);
+  }
+  auto nodeSign = [&](int i, int j, int m) {
+    const double p[3] = { L.X(0, i), L.X(1, j), L.X(2, m) };
+    return this->Sign(p);
+  };
+  // The z column through nodes (i, j): its sign at level 0, and the levels m after
+  // which its sign flips (sorted; the sign at level m' > m is toggled).
+  auto flipLevel = [&](double x) {
+    int g = static_cast<int>(std::floor((x - L.B0[2]) / L.H[2] + 0.5));
+    g = std::max(0, std::min(g, nz - 1));
+    while (g + 1 < nz && L.X(2, g + 1) <= x)
+    {
+      ++g;
+    }
+    while (g > 0 && L.X(2, g) > x)
+    {
+      --g;
+    }
+    return g;
+  };
+  auto columnFlips = [&](int i, int j, std::vector<int>& flips) -> unsigned char {
+    const bool boundary = i == 0 || i == nx - 1 || j == 0 || j == ny - 1;
+    if (boundary)
+    {
+      const int f = i == 0 ? 0 : i == nx - 1 ? 1 : j == 0 ? 2 : 3;
+      if (faceSign[f] >= 0)
+      {
+        return static_cast<unsigned char>(faceSign[f]);
+      }
+      const int s0 = nodeSign(i, j, 0);
+      int previous = s0;
+      for (int m = 1; m < nz; ++m)
+      {
+        const int sm = nodeSign(i, j, m);
+        if (sm != previous)
+        {
+          flips.push_back(m - 1);
+        }
+        previous = sm;
+      }
+      return static_cast<unsigned char>(s0);
+    }
+    const unsigned char sign = faceSign[4] >= 0 ? faceSign[4] : nodeSign(i, j, 0);
+    const vtkIdType l = L.Line(2, i, j);
+    for (const Sample* c = line.data() + start[l]; c != line.data() + start[l + 1]; ++c)
+    {
+      const int level = flipLevel(c->X);
+      if (c->Code != INT64_MIN && !c->Tangent && level < nz - 1)
+      {
+        flips.push_back(level);
+      }
+    }
+    return sign;
+  };
+
+  // PASS 3: the marching-cubes triangles of every cell, one row of columns (fixed j)
+  // per work item; vertices are the crossings on the cell's edges, looked up on their
+  // lattice lines, or computed on the edge where no line carries one.
+  vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+  std::vector<std::vector<std::int64_t>> rowTriangles(ny - 1);
+  std::vector<std::vector<Computed>> rowPoints(ny - 1);
+  vtkSMPTools::For(0, ny - 1, [&](vtkIdType jb, vtkIdType je) {
+    // Per row, the flips of the columns through (i, j) and (i, j + 1), as CSR lists.
+    std::vector<int> flips[2];
+    std::vector<size_t> offset[2];
+    std::vector<unsigned char> startSign[2];
+    for (vtkIdType jj = jb; jj < je && !this->Aborted(); ++jj)
+    {
+      const int j = static_cast<int>(jj);
+      if (vtkSMPTools::GetSingleThread())
+      {
+        this->Algorithm->UpdateProgress(0.3 + 0.6 * j / (ny - 1));
+      }
+      for (int side = 0; side < 2; ++side)
+      {
+        flips[side].clear();
+        offset[side].assign(1, 0);
+        startSign[side].clear();
+        for (int i = 0; i < nx; ++i)
+        {
+          startSign[side].push_back(columnFlips(i, j + side, flips[side]));
+          offset[side].push_back(flips[side].size());
+        }
+      }
+      std::vector<std::int64_t>& tris = rowTriangles[j];
+      std::vector<Computed>& pts = rowPoints[j];
+      auto vertex = [&](int a, int i, int jn, int m) -> std::int64_t {
+        // The edge along axis a from node (i, jn, m).
+        const int n[3] = { i, jn, m };
+        const int mu = n[(a + 1) % 3], mv = n[(a + 2) % 3];
+        if (L.HasLine(a, mu, mv))
+        {
+          if (const Sample* s = firstCrossing(L.Line(a, mu, mv), L.X(a, n[a]), L.X(a, n[a] + 1)))
+          {
+            return s->Code;
+          }
+        }
+        // No line carries it (a plane of the box, or a root within 1e-10 of a node):
+        // the root of F on the edge itself.
+        const std::int64_t key =
+          EdgeBit | ((((std::int64_t(m) * ny + jn) * nx + i) * 3) + a);
+        Computed c;
+        c.Key = key;
+        c.View = -1;
+        double p0[3] = { L.X(0, i), L.X(1, jn), L.X(2, m) };
+        c.P[0] = p0[0];
+        c.P[1] = p0[1];
+        c.P[2] = p0[2];
+        if (this->Kernel)
+        {
+          const double x0 = L.X(a, n[a]), x1 = L.X(a, n[a] + 1);
+          auto phi = [&](double x) {
+            double q[3] = { p0[0], p0[1], p0[2] };
+            q[a] = x;
+            return this->Kernel->EvaluateCompressed(q);
+          };
+          const double v0 = phi(x0), v1 = phi(x1);
+          c.P[a] = (v0 < 0) != (v1 < 0)
+            ? pisurf::BracketedRoot(phi, x0, x1, v0, v1, 1e-10 * this->Size, 0.0)
+            : 0.5 * (x0 + x1);
+        }
+        else
+        {
+          c.P[a] = 0.5 * (L.X(a, n[a]) + L.X(a, n[a] + 1));
+        }
+        pts.push_back(c);
+        return key;
+      };
+      auto emitCell = [&](int i, int m, const unsigned char* bottom, const unsigned char* top) {
+        int index = 0;
+        for (int q = 0; q < 4; ++q)
+        {
+          index |= (bottom[q] << q) | (top[q] << (q + 4));
+        }
+        if (index == 0 || index == 255)
+        {
+          return;
+        }
+        const int* list = cases[index].edges;
+        for (int e = 0; list[e] >= 0; ++e)
+        {
+          const int* ends = Edge[list[e]];
+          int lo[3], a = 0;
+          for (int k = 0; k < 3; ++k)
+          {
+            lo[k] = std::min(Corner[ends[0]][k], Corner[ends[1]][k]);
+            if (Corner[ends[0]][k] != Corner[ends[1]][k])
+            {
+              a = k;
+            }
+          }
+          tris.push_back(vertex(a, i + lo[0], j + lo[1], m + lo[2]));
+        }
+      };
+      for (int i = 0; i + 1 < nx; ++i)
+      {
+        // The four columns of the cells (i, j, ·) in marching-cubes corner order. Their
+        // signs are constant between flips: a run of cells where the four disagree is
+        // a wall (all active), where they agree it is skipped.
+        const int side[4] = { 0, 0, 1, 1 }, column[4] = { i, i + 1, i + 1, i };
+        const int* f[4];
+        const int* fe[4];
+        unsigned char sg[4];
+        for (int q = 0; q < 4; ++q)
+        {
+          f[q] = flips[side[q]].data() + offset[side[q]][column[q]];
+          fe[q] = flips[side[q]].data() + offset[side[q]][column[q] + 1];
+          sg[q] = startSign[side[q]][column[q]];
+        }
+        for (int m = 0;;)
+        {
+          int e = nz - 1;
+          for (int q = 0; q < 4; ++q)
+          {
+            if (f[q] != fe[q])
+            {
+              e = std::min(e, *f[q]);
+            }
+          }
+          if (!(sg[0] == sg[1] && sg[1] == sg[2] && sg[2] == sg[3]))
+          {
+            for (int c = m; c < e && c < nz - 1; ++c)
+            {
+              emitCell(i, c, sg, sg);
+            }
+          }
+          if (e >= nz - 1)
+          {
+            break;
+          }
+          unsigned char top[4] = { sg[0], sg[1], sg[2], sg[3] };
+          for (int q = 0; q < 4; ++q)
+          {
+            for (; f[q] != fe[q] && *f[q] == e; ++f[q])
+            {
+              top[q] ^= 1;
+            }
+          }
+          emitCell(i, e, sg, top);
+          std::copy(top, top + 4, sg);
+          m = e + 1;
+        }
+      }
+    }
+  });
+  if (this->Abort)
+  {
+    return;
+  }
+  this->Rows = std::move(rowTriangles);
+  for (auto& p : rowPoints)
+  {
+    this->Points.insert(this->Points.end(), p.begin(), p.end());
+  }
+}
+
+void Triangulation::RunBestView(double sheetTolerance)
+{
+  const Cloud& C = this->C;
+  // Per view and pixel, the hits sorted by depth (CSR).
+  std::vector<vtkIdType> pixelStart(this->Views.size() + 1, 0);
+  for (size_t v = 0; v < this->Views.size(); ++v)
+  {
+    pixelStart[v + 1] = pixelStart[v] + vtkIdType(this->Views[v].W) * this->Views[v].H;
+  }
+  auto pixelOf = [&](vtkIdType id) {
+    const View& v = this->Views[C.ViewOf[id]];
+    return pixelStart[C.ViewOf[id]] + vtkIdType(C.Pixel[2 * id + 1]) * v.W + C.Pixel[2 * id];
+  };
+  const vtkIdType pixels = pixelStart.back();
+  std::vector<vtkIdType> first(pixels + 1, 0), hits(C.N);
+  for (vtkIdType id = 0; id < C.N; ++id)
+  {
+    ++first[pixelOf(id) + 1];
+  }
+  for (vtkIdType p = 0; p < pixels; ++p)
+  {
+    first[p + 1] += first[p];
+  }
+  {
+    std::vector<vtkIdType> fill(first.begin(), first.end() - 1);
+    for (vtkIdType id = 0; id < C.N; ++id)
+    {
+      hits[fill[pixelOf(id)]++] = id;
+    }
+  }
+  vtkSMPTools::For(0, pixels, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType p = b; p < e; ++p)
+    {
+      std::sort(hits.begin() + first[p], hits.begin() + first[p + 1],
+        [&](vtkIdType x, vtkIdType y) { return C.Depth[x] < C.Depth[y]; });
+    }
+  });
+
+  auto facing = [&](vtkIdType id) {
+    const View& v = this->Views[C.ViewOf[id]];
+    double o[3], d[3];
+    v.Ray(C.Pixel[2 * id], C.Pixel[2 * id + 1], o, d);
+    const double c = C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2];
+    return c;
+  };
+
+  // PASS 1: ownership. A hit belongs to the view that sees it best: the largest |n·d|
+  // among the views whose ray through it reaches it first (within a footprint).
+  std::vector<int> owner(C.N);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      const double* p = C.P.data() + 3 * id;
+      int best = C.ViewOf[id];
+      double bestCos = std::fabs(facing(id));
+      for (size_t w = 0; w < this->Views.size(); ++w)
+      {
+        if (static_cast<int>(w) == C.ViewOf[id] || C.Singular[id])
+        {
+          continue;
+        }
+        const View& v = this->Views[w];
+        double fi, fj;
+        if (!v.Project(p, fi, fj))
+        {
+          continue;
+        }
+        double o[3], d[3];
+        v.Ray(fi, fj, o, d);
+        const double c = std::fabs(C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] +
+          C.Normal[3 * id + 2] * d[2]);
+        if (c <= bestCos)
+        {
+          continue;
+        }
+        // Visible in w: one of the four nearest pixels' first hits lies at p.
+        const double reach = 2.0 * v.Footprint(std::sqrt(vtkMath::Distance2BetweenPoints(p, v.O)));
+        bool seen = false;
+        for (int q = 0; q < 4 && !seen; ++q)
+        {
+          const int pi = static_cast<int>(std::floor(fi)) + q % 2;
+          const int pj = static_cast<int>(std::floor(fj)) + q / 2;
+          if (pi < 0 || pj < 0 || pi >= v.W || pj >= v.H)
+          {
+            continue;
+          }
+          const vtkIdType px = pixelStart[w] + vtkIdType(pj) * v.W + pi;
+          if (first[px] < first[px + 1])
+          {
+            const vtkIdType h = hits[first[px]];
+            seen = vtkMath::Distance2BetweenPoints(p, C.P.data() + 3 * h) <= reach * reach;
+          }
+        }
+        if (seen)
+        {
+          best = static_cast<int>(w);
+          bestCos = c;
+        }
+      }
+      owner[id] = best;
+    }
+  });
+  this->Algorithm->UpdateProgress(0.4);
+
+  // Two hits of neighbouring pixels of one view are on one sheet: same facing, and the
+  // depth of one within SheetTolerance footprints of the other's tangent plane.
+  auto linked = [&](vtkIdType a, vtkIdType b) {
+    const View& v = this->Views[C.ViewOf[a]];
+    const double fa = facing(a), fb = facing(b);
+    if (!C.Singular[a] && !C.Singular[b] && (fa < 0) != (fb < 0))
+    {
+      return false;
+    }
+    const double tolerance = sheetTolerance * v.Footprint(0.5 * (C.Depth[a] + C.Depth[b]));
+    auto predicted = [&](vtkIdType x, vtkIdType y) {
+      // Depth where y's ray meets x's tangent plane.
+      double o[3], d[3];
+      v.Ray(C.Pixel[2 * y], C.Pixel[2 * y + 1], o, d);
+      const float* n = C.Normal.data() + 3 * x;
+      const double* px = C.P.data() + 3 * x;
+      const double nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+      const double w = n[0] * (px[0] - o[0]) + n[1] * (px[1] - o[1]) + n[2] * (px[2] - o[2]);
+      const double* py = C.P.data() + 3 * y;
+      const double ty = (py[0] - o[0]) * d[0] + (py[1] - o[1]) * d[1] + (py[2] - o[2]) * d[2];
+      return std::fabs(nd) > 1e-12 ? std::fabs(w / nd - ty) : VTK_DOUBLE_MAX;
+    };
+    double error = VTK_DOUBLE_MAX;
+    if (!C.Singular[a])
+    {
+      error = std::min(error, predicted(a, b));
+    }
+    if (!C.Singular[b])
+    {
+      error = std::min(error, predicted(b, a));
+    }
+    if (C.Singular[a] && C.Singular[b])
+    {
+      error = std::sqrt(vtkMath::Distance2BetweenPoints(C.P.data() + 3 * a, C.P.data() + 3 * b)) - 2 * tolerance;
+    }
+    return error <= tolerance;
+  };
+  // The hit of pixel px on the sheet of hit a, or −1.
+  auto match = [&](vtkIdType a, vtkIdType px) -> vtkIdType {
+    vtkIdType best = -1;
+    double bestGap = VTK_DOUBLE_MAX;
+    for (vtkIdType k = first[px]; k < first[px + 1]; ++k)
+    {
+      const vtkIdType b = hits[k];
+      const double gap = std::fabs(C.Depth[b] - C.Depth[a]);
+      if (gap < bestGap && linked(a, b))
+      {
+        best = b;
+        bestGap = gap;
+      }
+    }
+    return best;
+  };
+
+  // PASS 2: per view and image row, the triangles of the pixel quads.
+  std::vector<std::pair<size_t, int>> rows;
+  for (size_t v = 0; v < this->Views.size(); ++v)
+  {
+    for (int j = 0; j + 1 < this->Views[v].H; ++j)
+    {
+      rows.emplace_back(v, j);
+    }
+  }
+  std::vector<std::vector<std::int64_t>> rowTriangles(rows.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), [&](vtkIdType rb, vtkIdType re) {
+    for (vtkIdType r = rb; r < re && !this->Aborted(); ++r)
+    {
+      const int v = static_cast<int>(rows[r].first), j = rows[r].second;
+      const View& view = this->Views[v];
+      std::vector<std::int64_t>& tris = rowTriangles[r];
+      auto emit = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+        if (owner[a] == v && owner[b] == v && owner[c] == v)
+        {
+          tris.push_back(a);
+          tris.push_back(b);
+          tris.push_back(c);
+        }
+      };
+      for (int i = 0; i + 1 < view.W; ++i)
+      {
+        const vtkIdType px[4] = { pixelStart[v] + vtkIdType(j) * view.W + i,
+          pixelStart[v] + vtkIdType(j) * view.W + i + 1,
+          pixelStart[v] + vtkIdType(j + 1) * view.W + i + 1,
+          pixelStart[v] + vtkIdType(j + 1) * view.W + i };
+        // Quads and triangles with a hit at corner 0.
+        std::vector<vtkIdType> used;
+        for (vtkIdType k = first[px[0]]; k < first[px[0] + 1]; ++k)
+        {
+          const vtkIdType a = hits[k];
+          const vtkIdType m1 = match(a, px[1]), m2 = match(a, px[2]), m3 = match(a, px[3]);
+          if (m1 >= 0 && m2 >= 0 && m3 >= 0)
+          {
+            // The diagonal through a singular corner, else the shorter one.
+            bool diagonal02 = C.Singular[a] || C.Singular[m2];
+            if (!diagonal02 && !C.Singular[m1] && !C.Singular[m3])
+            {
+              diagonal02 = vtkMath::Distance2BetweenPoints(C.P.data() + 3 * a, C.P.data() + 3 * m2) <=
+                vtkMath::Distance2BetweenPoints(C.P.data() + 3 * m1, C.P.data() + 3 * m3);
+            }
+            if (diagonal02)
+            {
+              emit(a, m1, m2);
+              emit(a, m2, m3);
+            }
+            else
+            {
+              emit(a, m1, m3);
+              emit(m1, m2, m3);
+            }
+            used.push_back(m1);
+          }
+          else if (m1 >= 0 && m3 >= 0 && linked(m1, m3))
+          {
+            emit(a, m1, m3);
+          }
+          else if (m1 >= 0 && m2 >= 0)
+          {
+            emit(a, m1, m2);
+          }
+          else if (m2 >= 0 && m3 >= 0)
+          {
+            emit(a, m2, m3);
+          }
+        }
+        // The triangle without corner 0.
+        for (vtkIdType k = first[px[1]]; k < first[px[1] + 1]; ++k)
+        {
+          const vtkIdType b = hits[k];
+          if (std::find(used.begin(), used.end(), b) != used.end())
+          {
+            continue;
+          }
+          bool withCorner0 = false;
+          for (vtkIdType q = first[px[0]]; q < first[px[0] + 1] && !withCorner0; ++q)
+          {
+            withCorner0 = linked(hits[q], b);
+          }
+          const vtkIdType m2 = match(b, px[2]), m3 = match(b, px[3]);
+          if (!withCorner0 && m2 >= 0 && m3 >= 0 && linked(m2, m3))
+          {
+            emit(b, m2, m3);
+          }
+        }
+      }
+    }
+  });
+  this->Rows = std::move(rowTriangles);
+}
+}
+
+int vtkPiImageTriangulator::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  Triangulation T;
+  T.Algorithm = this;
+
+  // The pixel structure: PixelIndex, ViewIndex, Depth, Normals and PiRayViews.
+  vtkPointData* pd = input->GetPointData();
+  vtkDataArray* pixel = Array(pd, "PixelIndex", 2);
+  vtkDataArray* viewIndex = Array(pd, "ViewIndex", 1);
+  vtkDataArray* depth = Array(pd, "Depth", 1);
+  vtkDataArray* normals = Array(pd, "Normals", 3);
+  auto* viewData = vtkDataArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiRayViews"));
+  if (!pixel || !viewIndex || !depth || !normals || !viewData ||
+    viewData->GetNumberOfComponents() < 16)
+  {
+    vtkErrorMacro(<< "The input has no pixel structure: it needs the point arrays PixelIndex, "
+                     "ViewIndex, Depth and Normals and the field data PiRayViews of a Pi Ray "
+                     "Cast (vtkPiRayCaster) output");
+    return 0;
+  }
+  for (vtkIdType v = 0; v < viewData->GetNumberOfTuples(); ++v)
+  {
+    double t[17] = {};
+    for (int c = 0; c < std::min(17, viewData->GetNumberOfComponents()); ++c)
+    {
+      t[c] = viewData->GetComponent(v, c);
+    }
+    View view;
+    view.Perspective = t[0] != 0;
+    view.W = static_cast<int>(t[1]);
+    view.H = static_cast<int>(t[2]);
+    std::copy(t + 3, t + 6, view.O);
+    std::copy(t + 6, t + 9, view.U);
+    std::copy(t + 9, t + 12, view.V);
+    std::copy(t + 12, t + 15, view.D);
+    view.Length = t[15];
+    view.AllHits = t[16] != 0;
+    bool finite = true;
+    for (double x : t)
+    {
+      finite = finite && std::isfinite(x);
+    }
+    if (!finite || view.W < 1 || view.H < 1 || !(vtkMath::Norm(view.D) > 0) ||
+      !(vtkMath::Norm(view.U) > 0) || !(vtkMath::Norm(view.V) > 0) || !(view.Length > 0))
+    {
+      vtkErrorMacro(<< "PiRayViews: view " << v << " is not a valid view definition");
+      return 0;
+    }
+    // An axis view: rays along ±e_a, u along e_(a+1), v along e_(a+2), as the caster
+    // casts them.
+    if (!view.Perspective)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        const int ua = (a + 1) % 3, va = (a + 2) % 3;
+        const double d = vtkMath::Norm(view.D);
+        if (std::fabs(std::fabs(view.D[a]) - d) <= 1e-12 * d && view.U[ua] > 0 &&
+          view.V[va] > 0 && view.U[a] == 0 && view.U[va] == 0 && view.V[a] == 0 &&
+          view.V[ua] == 0)
+        {
+          view.Axis = a;
+          view.Sense = view.D[a] < 0 ? -1 : 1;
+        }
+      }
+    }
+    T.Views.push_back(view);
+  }
+  if (T.Views.empty())
+  {
+    vtkErrorMacro(<< "PiRayViews holds no view");
+    return 0;
+  }
+
+  // The cloud.
+  Cloud& C = T.C;
+  C.N = input->GetNumberOfPoints();
+  C.P.resize(3 * C.N);
+  C.Normal.resize(3 * C.N);
+  C.Pixel.resize(2 * C.N);
+  C.ViewOf.resize(C.N);
+  C.Depth.resize(C.N);
+  C.Singular.assign(C.N, 0);
+  C.Tangent.assign(C.N, 0);
+  C.Factor.assign(C.N, -1);
+  vtkDataArray* singular = Array(pd, "Singular", 1);
+  vtkDataArray* tangent = Array(pd, "Tangent", 1);
+  vtkDataArray* factor = Array(pd, "Factor", 1);
+  for (vtkIdType id = 0; id < C.N; ++id)
+  {
+    input->GetPoint(id, C.P.data() + 3 * id);
+    double n[3];
+    normals->GetTuple(id, n);
+    const int v = static_cast<int>(viewIndex->GetComponent(id, 0));
+    const int i = static_cast<int>(pixel->GetComponent(id, 0));
+    const int j = static_cast<int>(pixel->GetComponent(id, 1));
+    if (v < 0 || v >= static_cast<int>(T.Views.size()) || i < 0 || j < 0 ||
+      i >= T.Views[v].W || j >= T.Views[v].H)
+    {
+      vtkErrorMacro(<< "Point " << id << ": pixel (" << i << ", " << j << ") of view " << v
+                    << " is outside the views of PiRayViews");
+      return 0;
+    }
+    const double* p = C.P.data() + 3 * id;
+    if (!std::isfinite(p[0] + p[1] + p[2]) || !std::isfinite(n[0] + n[1] + n[2]))
+    {
+      vtkErrorMacro(<< "Point " << id << " has a non-finite position or normal");
+      return 0;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      C.Normal[3 * id + k] = static_cast<float>(n[k]);
+    }
+    C.ViewOf[id] = v;
+    C.Pixel[2 * id] = i;
+    C.Pixel[2 * id + 1] = j;
+    C.Depth[id] = depth->GetComponent(id, 0);
+    C.Singular[id] = singular && singular->GetComponent(id, 0) != 0;
+    C.Tangent[id] = tangent && tangent->GetComponent(id, 0) != 0;
+    C.Factor[id] = factor ? static_cast<int>(factor->GetComponent(id, 0)) : -1;
+  }
+
+  // The model, when the input carries it (needed for what the views did not see).
+  auto* json = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
+  vtkNew<vtkPiSurface> surface;
+  if (json && json->GetNumberOfValues() > 0)
+  {
+    if (!surface->SetModelJSON(json->GetValue(0)))
+    {
+      vtkErrorMacro(<< "Invalid PiSurfaceModel: " << surface->GetErrorMessage());
+      return 0;
+    }
+    T.Kernel = surface->GetKernel();
+    T.Caster.reset(new pisurf::RayCaster(*T.Kernel));
+  }
+
+  // The size of the scene: the extent of the views' rays.
+  double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (const View& v : T.Views)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      double o[3], d[3];
+      v.Ray(c % 2 ? v.W - 1 : 0, c / 2 ? v.H - 1 : 0, o, d);
+      for (int k = 0; k < 3; ++k)
+      {
+        for (double p : { o[k], o[k] + v.Length * d[k] })
+        {
+          box[2 * k] = std::min(box[2 * k], p);
+          box[2 * k + 1] = std::max(box[2 * k + 1], p);
+        }
+      }
+    }
+  }
+  T.Size = std::sqrt((box[1] - box[0]) * (box[1] - box[0]) + (box[3] - box[2]) * (box[3] - box[2]) +
+    (box[5] - box[4]) * (box[5] - box[4]));
+  if (!(T.Size > 0))
+  {
+    T.Size = 1;
+  }
+
+  Lattice L;
+  const bool lattice = T.FindLattice(L);
+  int mode = this->MergeMode;
+  if (mode == AUTOMATIC)
+  {
+    mode = lattice ? RAY_LATTICE : BEST_VIEW;
+  }
+  if (mode == RAY_LATTICE)
+  {
+    if (!lattice)
+    {
+      vtkErrorMacro(<< "RAY_LATTICE needs axis views over one box covering the three axes "
+                       "with matching resolutions (Six Axis Views or Three Axis Directions)");
+      return 0;
+    }
+    const double cells = double(L.N[0] + 1) * (L.N[1] + 1) * (L.N[2] + 1);
+    if (cells > 1.1e10)
+    {
+      vtkErrorMacro(<< "The ray lattice of " << cells << " cells is too large");
+      return 0;
+    }
+    T.RunLattice(L);
+  }
+  else
+  {
+    T.RunBestView(this->SheetTolerance);
+  }
+  if (T.Abort)
+  {
+    output->Initialize();
+    return 1;
+  }
+
+  // PASS 4: output ids. The hits used by a triangle come first, in input order, then
+  // the computed points in key order.
+  std::vector<vtkIdType> hitOut(C.N, -1);
+  std::vector<vtkIdType> rowStart(T.Rows.size() + 1, 0);
+  for (size_t r = 0; r < T.Rows.size(); ++r)
+  {
+    rowStart[r + 1] = rowStart[r] + static_cast<vtkIdType>(T.Rows[r].size());
+    for (std::int64_t key : T.Rows[r])
+    {
+      if (key >= 0 && key < EdgeBit)
+      {
+        hitOut[key] = 0;
+      }
+    }
+  }
+  vtkIdType usedHits = 0;
+  for (vtkIdType id = 0; id < C.N; ++id)
+  {
+    if (hitOut[id] == 0)
+    {
+      hitOut[id] = usedHits++;
+    }
+  }
+  std::sort(T.Points.begin(), T.Points.end(),
+    [](const Computed& x, const Computed& y) { return x.Key < y.Key; });
+  T.Points.erase(std::unique(T.Points.begin(), T.Points.end(),
+                   [](const Computed& x, const Computed& y) { return x.Key == y.Key; }),
+    T.Points.end());
+  const vtkIdType triangles = rowStart.back() / 3;
+  std::vector<vtkIdType> corner(rowStart.back());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType r = b; r < e; ++r)
+    {
+      vtkIdType* out = corner.data() + rowStart[r];
+      for (std::int64_t key : T.Rows[r])
+      {
+        *out++ = key >= 0 && key < EdgeBit ? hitOut[key]
+                                           : usedHits +
+            (std::lower_bound(T.Points.begin(), T.Points.end(), key,
+               [](const Computed& x, std::int64_t k) { return x.Key < k; }) -
+              T.Points.begin());
+      }
+      std::vector<std::int64_t>().swap(T.Rows[r]);
+    }
+  });
+  const vtkIdType total = usedHits + static_cast<vtkIdType>(T.Points.size());
+
+  // Components that no ray of the views reaches (closed shells inside the solid, found
+  // on the hidden parts of first-hit rays) are not what the views show: components
+  // without an input hit are dropped.
+  std::vector<vtkIdType> parent(total);
+  for (vtkIdType k = 0; k < total; ++k)
+  {
+    parent[k] = k;
+  }
+  auto find = [&](vtkIdType x) {
+    while (parent[x] != x)
+    {
+      x = parent[x] = parent[parent[x]];
+    }
+    return x;
+  };
+  for (vtkIdType t = 0; t < triangles; ++t)
+  {
+    for (int c = 1; c < 3; ++c)
+    {
+      const vtkIdType x = find(corner[3 * t]), y = find(corner[3 * t + c]);
+      parent[std::max(x, y)] = std::min(x, y);
+    }
+  }
+  std::vector<unsigned char> visible(total, 0);
+  for (vtkIdType k = 0; k < usedHits; ++k)
+  {
+    visible[find(k)] = 1;
+  }
+  std::vector<vtkIdType> newId(total, -1);
+  vtkIdType n = 0;
+  for (vtkIdType k = 0; k < total; ++k)
+  {
+    if (visible[find(k)])
+    {
+      newId[k] = n++;
+    }
+  }
+  usedHits = 0;
+  for (vtkIdType id = 0; id < C.N; ++id)
+  {
+    if (hitOut[id] >= 0 && newId[hitOut[id]] >= 0)
+    {
+      ++usedHits;
+    }
+  }
+
+  // The vertices: input hits copy their attributes, computed points take them from
+  // the exact gradient.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> outNormals;
+  outNormals->SetName("Normals");
+  outNormals->SetNumberOfComponents(3);
+  outNormals->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> outSingular;
+  outSingular->SetName("Singular");
+  outSingular->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> outView;
+  outView->SetName("ViewIndex");
+  outView->SetNumberOfTuples(n);
+  vtkNew<vtkIntArray> outFactor;
+  outFactor->SetName("Factor");
+  outFactor->SetNumberOfTuples(n);
+  auto* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
+  float* nrmOut = outNormals->GetPointer(0);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      const vtkIdType k = hitOut[id] >= 0 ? newId[hitOut[id]] : -1;
+      if (k < 0)
+      {
+        continue;
+      }
+      std::copy(C.P.data() + 3 * id, C.P.data() + 3 * id + 3, xyz + 3 * k);
+      std::copy(C.Normal.data() + 3 * id, C.Normal.data() + 3 * id + 3, nrmOut + 3 * k);
+      outSingular->SetValue(k, C.Singular[id]);
+      outView->SetValue(k, C.ViewOf[id]);
+      outFactor->SetValue(k, C.Factor[id]);
+    }
+  });
+  const double probe = 1e-3 * T.Size;
+  const vtkIdType firstComputed = total - static_cast<vtkIdType>(T.Points.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Points.size()), [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType q = b; q < e; ++q)
+    {
+      const vtkIdType k = newId[firstComputed + q];
+      if (k < 0)
+      {
+        continue;
+      }
+      const Computed& c = T.Points[q];
+      std::copy(c.P, c.P + 3, xyz + 3 * k);
+      outView->SetValue(k, c.View);
+      double nrm[3] = { 0, 0, 0 }, g = 0, logGradient = 0;
+      int nearest = -1;
+      bool isSingular = false;
+      if (T.Kernel)
+      {
+        T.Kernel->EvaluateVertex(c.P, nrm, g, nearest, &logGradient);
+        isSingular = T.Caster->IsSingular(c.P, logGradient, probe, this->SingularTolerance);
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        nrmOut[3 * k + a] = static_cast<float>(nrm[a]);
+      }
+      outSingular->SetValue(k, isSingular ? 1 : 0);
+      outFactor->SetValue(k, nearest);
+    }
+  });
+
+  // Triangles, oriented so that their normals agree with the exact gradient (outward);
+  // degenerate ones (two corners on one hit) are dropped.
+  std::vector<unsigned char> keep(triangles, 0);
+  vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType t = b; t < e; ++t)
+    {
+      vtkIdType id[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        id[c] = newId[corner[3 * t + c]];
+      }
+      if (id[0] < 0 || id[0] == id[1] || id[1] == id[2] || id[0] == id[2])
+      {
+        continue;
+      }
+      double u[3], v[3], nt[3], average[3] = { 0, 0, 0 };
+      const double* p0 = xyz + 3 * id[0];
+      for (int k = 0; k < 3; ++k)
+      {
+        u[k] = xyz[3 * id[1] + k] - p0[k];
+        v[k] = xyz[3 * id[2] + k] - p0[k];
+        for (int c = 0; c < 3; ++c)
+        {
+          average[k] += nrmOut[3 * id[c] + k];
+        }
+      }
+      vtkMath::Cross(u, v, nt);
+      if (vtkMath::Dot(nt, average) < 0)
+      {
+        std::swap(id[1], id[2]);
+      }
+      std::copy(id, id + 3, corner.begin() + 3 * t);
+      keep[t] = 1;
+    }
+  });
+  vtkNew<vtkIdTypeArray> offsets, cells;
+  offsets->SetNumberOfTuples(1);
+  offsets->SetValue(0, 0);
+  vtkIdType kept = 0;
+  for (vtkIdType t = 0; t < triangles; ++t)
+  {
+    if (keep[t])
+    {
+      std::copy(corner.begin() + 3 * t, corner.begin() + 3 * t + 3, corner.begin() + 3 * kept);
+      ++kept;
+    }
+  }
+  corner.resize(3 * kept);
+  const std::vector<vtkIdType>& connectivity = corner;
+  cells->SetNumberOfTuples(3 * kept);
+  std::copy(connectivity.begin(), connectivity.end(), cells->GetPointer(0));
+  offsets->SetNumberOfTuples(kept + 1);
+  for (vtkIdType t = 0; t <= kept; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, cells);
+
+  // Boundary edges: used by one triangle only. Edges are gathered by their lower
+  // vertex (CSR), then counted vertex by vertex.
+  std::vector<vtkIdType> edgeStart(n + 1, 0);
+  for (vtkIdType c = 0; c < 3 * kept; ++c)
+  {
+    const vtkIdType a = connectivity[c], b = connectivity[c % 3 == 2 ? c - 2 : c + 1];
+    ++edgeStart[std::min(a, b) + 1];
+  }
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    edgeStart[k + 1] += edgeStart[k];
+  }
+  std::vector<vtkIdType> edgeEnd(3 * kept);
+  {
+    std::vector<vtkIdType> fill(edgeStart.begin(), edgeStart.end() - 1);
+    for (vtkIdType c = 0; c < 3 * kept; ++c)
+    {
+      const vtkIdType a = connectivity[c], b = connectivity[c % 3 == 2 ? c - 2 : c + 1];
+      edgeEnd[fill[std::min(a, b)]++] = std::max(a, b);
+    }
+  }
+  std::atomic<vtkIdType> boundary{ 0 };
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    vtkIdType count = 0;
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      auto first = edgeEnd.begin() + edgeStart[k], last = edgeEnd.begin() + edgeStart[k + 1];
+      std::sort(first, last);
+      for (auto x = first; x != last;)
+      {
+        auto y = x + 1;
+        while (y != last && *y == *x)
+        {
+          ++y;
+        }
+        count += (y - x == 1) ? 1 : 0;
+        x = y;
+      }
+    }
+    boundary += count;
+  });
+
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetPointData()->SetNormals(outNormals);
+  output->GetPointData()->AddArray(outSingular);
+  output->GetPointData()->AddArray(outView);
+  output->GetPointData()->AddArray(outFactor);
+  if (json)
+  {
+    output->GetFieldData()->AddArray(json);
+  }
+  vtkNew<vtkIdTypeArray> boundaryEdges;
+  boundaryEdges->SetName("BoundaryEdges");
+  boundaryEdges->InsertNextValue(boundary);
+  output->GetFieldData()->AddArray(boundaryEdges);
+  vtkNew<vtkIdTypeArray> unused;
+  unused->SetName("UnusedHits");
+  unused->InsertNextValue(C.N - usedHits);
+  output->GetFieldData()->AddArray(unused);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkPiImageTriangulator::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MergeMode: " << this->MergeMode << "\n";
+  os << indent << "SheetTolerance: " << this->SheetTolerance << "\n";
+  os << indent << "SingularTolerance: " << this->SingularTolerance << "\n";
+}
