@@ -1,5 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSurfaceSource.h"
+#include "vtkPiImageTriangulator.h"
+#include "vtkPiRayCaster.h"
+#include "vtkPolyData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "vtkPiSurface.h"
 
@@ -69,7 +75,61 @@ int vtkPiSurfaceSource::RequestData(
   {
     this->PiSurface->SetBlending(this->Blending);
   }
+  if (this->Method == RAY_CAST_TRIANGULATION)
+  {
+    return this->RayCastTriangulation(outputVector);
+  }
   return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  {
+    // The ray lattice is not split into pieces: the first piece holds the whole mesh.
+    return 1;
+  }
+  double bounds[6];
+  if (!this->PiSurface->ResolveBounds(this->Bounds, bounds))
+  {
+    vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
+    return 0;
+  }
+  int dims[3];
+  double spacing[3];
+  if (!this->ComputeGrid(bounds, dims, spacing))
+  {
+    return 0;
+  }
+  // One lattice resolution on the three axes (the views share their pixel counts).
+  const int n = std::max(dims[0], std::max(dims[1], dims[2])) - 1;
+  vtkNew<vtkPiRayCaster> caster;
+  caster->SetPiSurface(this->PiSurface);
+  caster->SetBounds(bounds);
+  caster->SetResolution(n, n);
+  caster->SetViewMode(this->OuterEnvelope ? vtkPiRayCaster::SIX_AXIS_VIEWS
+                                          : vtkPiRayCaster::THREE_AXIS_DIRECTIONS);
+  vtkNew<vtkPiImageTriangulator> triangulator;
+  triangulator->SetInputConnection(caster->GetOutputPort());
+  triangulator->SetMergeMode(vtkPiImageTriangulator::RAY_LATTICE);
+  triangulator->SetContainerAlgorithm(this);
+  caster->SetContainerAlgorithm(this);
+  triangulator->Update();
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+  output->ShallowCopy(triangulator->GetOutput());
+  if (this->GeneratePrimitives && primitives)
+  {
+    this->MeshPrimitives(bounds, dims, 0, 1, primitives);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 void vtkPiSurfaceSource::PrintSelf(ostream& os, vtkIndent indent)
@@ -78,4 +138,5 @@ void vtkPiSurfaceSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Model: " << this->ModelText << "\n";
   os << indent << "OverrideBlending: " << this->OverrideBlending << "\n";
   os << indent << "Blending: " << this->Blending << "\n";
+  os << indent << "Method: " << this->Method << "\n";
 }

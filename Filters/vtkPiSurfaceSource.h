@@ -10,6 +10,14 @@
  * on port 1, which are on by default here) is the mesher's. An invalid model is an error that names the key or the
  * position; the output is then empty.
  *
+ * Method chooses how F = 0 becomes triangles: FLYING_EDGES (default, vtkPiFlyingEdges
+ * with all its settings) or RAY_CAST_TRIANGULATION, the paper's image-based way:
+ * vtkPiRayCaster casts Resolution × Resolution rays per axis view over the bounds (the
+ * six axis views' first hits when OuterEnvelope is on, so closed shells inside the
+ * solid are not seen; the three axis directions with all hits when it is off) and
+ * vtkPiImageTriangulator connects the hits on their ray lattice. Its vertices are ray
+ * hits, exact without ProjectVertices; ComputeGradientMagnitude does not apply.
+ *
  * The default Model is the paper's Figure 1(b): two unit spheres at x = ±0.9, r = 0.25.
  *
  * @sa vtkPiFlyingEdges vtkPiSurfaceModelReader vtkPiSurface
@@ -48,6 +56,18 @@ public:
   vtkGetMacro(Blending, double);
   ///@}
 
+  enum Methods
+  {
+    FLYING_EDGES = 0,
+    RAY_CAST_TRIANGULATION
+  };
+
+  ///@{
+  /// How the surface is meshed (default FLYING_EDGES).
+  vtkSetClampMacro(Method, int, FLYING_EDGES, RAY_CAST_TRIANGULATION);
+  vtkGetMacro(Method, int);
+  ///@}
+
   /// The model changes only when the settings do (RequestData rewrites the surface).
   vtkMTimeType GetMTime() override;
 
@@ -58,9 +78,12 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Loads the model into this->PiSurface; false (with an error) if invalid.
   virtual bool ReadModel();
+  // RAY_CAST_TRIANGULATION: ray cast, triangulate, and the primitives on port 1.
+  int RayCastTriangulation(vtkInformationVector* outputVector);
 
   bool OverrideBlending = false;
   double Blending = 0.25;
+  int Method = FLYING_EDGES;
   std::string ModelText;
 
 private:
