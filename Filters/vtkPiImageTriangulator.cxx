@@ -808,7 +808,9 @@ void Triangulation::RunBestView(double sheetTolerance)
     }
     const double tolerance = sheetTolerance * v.Footprint(0.5 * (C.Depth[a] + C.Depth[b]));
     auto predicted = [&](vtkIdType x, vtkIdType y) {
-      // Depth where y's ray meets x's tangent plane.
+      // |depth where y's ray meets x's tangent plane − y's depth|, over the tolerance
+      // grown as the plane turns away from the view (a tangent plane predicts a depth
+      // change of footprint·tan θ, and its error grows like 1/cos θ), at most 4 times.
       double o[3], d[3];
       v.Ray(C.Pixel[2 * y], C.Pixel[2 * y + 1], o, d);
       const float* n = C.Normal.data() + 3 * x;
@@ -817,7 +819,8 @@ void Triangulation::RunBestView(double sheetTolerance)
       const double w = n[0] * (px[0] - o[0]) + n[1] * (px[1] - o[1]) + n[2] * (px[2] - o[2]);
       const double* py = C.P.data() + 3 * y;
       const double ty = (py[0] - o[0]) * d[0] + (py[1] - o[1]) * d[1] + (py[2] - o[2]) * d[2];
-      return std::fabs(nd) > 1e-12 ? std::fabs(w / nd - ty) : VTK_DOUBLE_MAX;
+      return std::fabs(nd) > 1e-12 ? std::fabs(w / nd - ty) * std::max(std::fabs(nd), 0.25)
+                                   : VTK_DOUBLE_MAX;
     };
     double error = VTK_DOUBLE_MAX;
     if (!C.Singular[a])
@@ -993,7 +996,7 @@ int vtkPiImageTriangulator::RequestData(
       finite = finite && std::isfinite(x);
     }
     if (!finite || view.W < 1 || view.H < 1 || !(vtkMath::Norm(view.D) > 0) ||
-      !(vtkMath::Norm(view.U) > 0) || !(vtkMath::Norm(view.V) > 0) || !(view.Length > 0))
+      !(vtkMath::Norm(view.U) > 0) || !(vtkMath::Norm(view.V) > 0) || view.Length < 0)
     {
       vtkErrorMacro(<< "PiRayViews: view " << v << " is not a valid view definition");
       return 0;
@@ -1085,7 +1088,7 @@ int vtkPiImageTriangulator::RequestData(
     T.Caster.reset(new pisurf::RayCaster(*T.Kernel));
   }
 
-  // The size of the scene: the extent of the views' rays.
+  // The size of the scene: the extent of the views' rays and of the hits.
   double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (const View& v : T.Views)
@@ -1102,6 +1105,14 @@ int vtkPiImageTriangulator::RequestData(
           box[2 * k + 1] = std::max(box[2 * k + 1], p);
         }
       }
+    }
+  }
+  for (vtkIdType id = 0; id < C.N; ++id)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      box[2 * k] = std::min(box[2 * k], C.P[3 * id + k]);
+      box[2 * k + 1] = std::max(box[2 * k + 1], C.P[3 * id + k]);
     }
   }
   T.Size = std::sqrt((box[1] - box[0]) * (box[1] - box[0]) + (box[3] - box[2]) * (box[3] - box[2]) +

@@ -29,8 +29,9 @@
  *   in the field `UnusedHits`, with tangent hits.
  * - BEST_VIEW. Any views (cameras included). Within a view, the hits of the four
  *   pixels of each pixel quad are linked when they lie on one sheet: the same facing
- *   (sign of n·d) and a depth within SheetTolerance pixel footprints of the tangent
- *   plane of one of them; so a silhouette, a depth jump, or two layers of an all-hits
+ *   (sign of n·d) and a depth within SheetTolerance pixel footprints (divided by
+ *   max(|n·d|, ¼), as a tangent plane predicts worse where it turns away) of the
+ *   tangent plane of one of them; so a silhouette, a depth jump, or two layers of an all-hits
  *   view are never bridged. A quad of four linked hits is split along the diagonal
  *   through a singular hit if there is one (so creases and apices stay vertices with
  *   their own triangles), else along the shorter diagonal. With several views each hit
@@ -78,8 +79,8 @@ public:
 
   ///@{
   /// BEST_VIEW: two hits of neighbouring pixels are on one sheet when the depth of one
-  /// is within this many pixel footprints of the tangent plane of the other
-  /// (default 1).
+  /// is within this many pixel footprints of the tangent plane of the other,
+  /// divided by max(|n·d|, 1/4) (default 2).
   vtkSetClampMacro(SheetTolerance, double, 0.0, 1e6);
   vtkGetMacro(SheetTolerance, double);
   ///@}
@@ -98,7 +99,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int MergeMode = AUTOMATIC;
-  double SheetTolerance = 1.0;
+  double SheetTolerance = 2.0;
   double SingularTolerance = 0.1;
 
 private:
