@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiFlyingEdges.h"
 
+#include "PiField.h"
 #include "PiModel.h"
 #include "PiProduct.h"
 #include "PiRayRoots.h"
@@ -48,7 +49,17 @@ struct vtkPiFlyingEdges::vtkInternals
 {
   std::vector<double> Values;
   std::vector<signed char> State;
+  std::shared_ptr<const pisurf::Field> Field;
 };
+
+void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
+{
+  if (field != this->Internals->Field)
+  {
+    this->Internals->Field = std::move(field);
+    this->Modified();
+  }
+}
 
 vtkPiFlyingEdges::vtkPiFlyingEdges()
   : Internals(new vtkInternals)
@@ -80,6 +91,38 @@ void vtkPiFlyingEdges::ReportReferences(vtkGarbageCollector* collector)
 
 namespace
 {
+// What the passes evaluate: the Pi-surface's product kernel or, when set, a field with
+// its own evaluation structures (SetField). Only the product has row restriction.
+struct Evaluator
+{
+  const pisurf::ProductKernel* Kernel = nullptr;
+  const pisurf::Field* Field = nullptr;
+
+  int ClassifyBox(const double box[6]) const
+  {
+    return this->Field ? this->Field->ClassifyBox(box) : this->Kernel->ClassifyBox(box);
+  }
+  double Evaluate(const double p[3]) const
+  {
+    return this->Field ? this->Field->Evaluate(p) : this->Kernel->Evaluate(p);
+  }
+  double EvaluateCompressed(const double p[3]) const
+  {
+    return this->Field ? this->Field->EvaluateCompressed(p) : this->Kernel->EvaluateCompressed(p);
+  }
+  void EvaluateVertex(const double p[3], double n[3], double& gradientNorm, int& nearest) const
+  {
+    if (this->Field)
+    {
+      this->Field->EvaluateVertex(p, n, gradientNorm, nearest);
+    }
+    else
+    {
+      this->Kernel->EvaluateVertex(p, n, gradientNorm, nearest);
+    }
+  }
+};
+
 // The grid is cut into blocks of BlockCells³ cells. A block whose interval bound
 // excludes the surface is "skipped": its sign is known and nothing in it is evaluated
 // or contoured. The others are "active".
@@ -175,7 +218,7 @@ struct Grid
 // PASS 1: interval bounds of F over each block still undecided.
 struct ClassifyBlocks
 {
-  const pisurf::ProductKernel* Kernel;
+  const Evaluator* Kernel;
   Grid* G;
   const std::vector<vtkIdType>* Blocks; // the blocks to classify
 
@@ -247,7 +290,8 @@ struct RestrictRows
 // of neighbours stay finite (the sign of F is exact, whatever its magnitude).
 struct SampleBlocks
 {
-  const pisurf::ProductKernel* Kernel;
+  const pisurf::ProductKernel* Kernel; // null when sampling Field
+  const pisurf::Field* Field;
   Grid* G;
   const std::vector<vtkIdType>* RowIndex; // per row (j, k): its index in the coefficients
   const std::vector<double>* Coefficients;
@@ -257,7 +301,7 @@ struct SampleBlocks
   void operator()(vtkIdType begin, vtkIdType end)
   {
     const bool single = vtkSMPTools::GetSingleThread();
-    const size_t n = this->Kernel->GetLineCoefficientCount();
+    const size_t n = this->Kernel ? this->Kernel->GetLineCoefficientCount() : 0;
     const double mid = 0.5 * (this->G->Dims[0] - 1);
     for (vtkIdType s = begin; s < end; ++s)
     {
@@ -276,8 +320,9 @@ struct SampleBlocks
       {
         for (int j = this->G->First(c, 1); j <= this->G->Last(c, 1); ++j)
         {
-          const double* coefficients =
-            this->Coefficients->data() + (*this->RowIndex)[vtkIdType(k) * this->G->Dims[1] + j] * n;
+          const double* coefficients = this->Kernel
+            ? this->Coefficients->data() + (*this->RowIndex)[vtkIdType(k) * this->G->Dims[1] + j] * n
+            : nullptr;
           double* out = v + size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) *
               BlockPoints;
           for (int i = this->G->First(c, 0); i <= this->G->Last(c, 0); ++i)
@@ -285,7 +330,9 @@ struct SampleBlocks
             const double p[3] = { this->G->Origin[0] + i * this->G->Spacing[0],
               this->G->Origin[1] + j * this->G->Spacing[1],
               this->G->Origin[2] + k * this->G->Spacing[2] };
-            const double F = this->Kernel->EvaluateRestricted(coefficients, i - mid, p);
+            const double F = this->Kernel
+              ? this->Kernel->EvaluateRestricted(coefficients, i - mid, p)
+              : this->Field->Evaluate(p);
             out[i - c[0] * BlockCells] = std::max(-ValueLimit, std::min(ValueLimit, F));
           }
         }
@@ -727,7 +774,7 @@ struct Contour
 // orders of magnitude along the edge.
 struct VertexAttributes
 {
-  const pisurf::ProductKernel* Kernel;
+  const Evaluator* Kernel;
   const Grid* G;
   const std::vector<vtkIdType>* VertexEdge;
   const std::vector<double>* VertexT;
@@ -902,31 +949,45 @@ int vtkPiFlyingEdges::RequestData(
   const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
     ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
     : 1;
-  if (!this->PiSurface)
-  {
-    vtkErrorMacro(<< "No Pi-surface to mesh: call SetPiSurface()");
-    return 0;
-  }
-  auto kernel = this->PiSurface->GetKernel();
-  if (!kernel || kernel->GetNumberOfFactors() == 0)
-  {
-    vtkErrorMacro(<< "The Pi-surface is invalid or has no factors"
-                  << (*this->PiSurface->GetErrorMessage() ? ": " : "")
-                  << this->PiSurface->GetErrorMessage());
-    return 0;
-  }
-
+  const std::shared_ptr<const pisurf::Field> field = this->Internals->Field;
+  std::shared_ptr<const pisurf::ProductKernel> kernel;
   double bounds[6];
-  if (!this->PiSurface->ResolveBounds(this->Bounds, bounds))
+  if (field)
   {
-    vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
-    return 0;
+    std::copy(this->Bounds, this->Bounds + 6, bounds);
+    if (!(bounds[0] < bounds[1] && bounds[2] < bounds[3] && bounds[4] < bounds[5]))
+    {
+      vtkErrorMacro(<< "A field is meshed in explicit Bounds: set them");
+      return 0;
+    }
   }
+  else
+  {
+    if (!this->PiSurface)
+    {
+      vtkErrorMacro(<< "No Pi-surface to mesh: call SetPiSurface()");
+      return 0;
+    }
+    kernel = this->PiSurface->GetKernel();
+    if (!kernel || kernel->GetNumberOfFactors() == 0)
+    {
+      vtkErrorMacro(<< "The Pi-surface is invalid or has no factors"
+                    << (*this->PiSurface->GetErrorMessage() ? ": " : "")
+                    << this->PiSurface->GetErrorMessage());
+      return 0;
+    }
+    if (!this->PiSurface->ResolveBounds(this->Bounds, bounds))
+    {
+      vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
+      return 0;
+    }
+  }
+  const Evaluator evaluator{ kernel.get(), field.get() };
 
   int resolution = this->Resolution;
   const bool explicitDimensions = this->SampleDimensions[0] != 0 ||
     this->SampleDimensions[1] != 0 || this->SampleDimensions[2] != 0;
-  if (this->AutomaticResolution && !explicitDimensions)
+  if (this->AutomaticResolution && !explicitDimensions && !field)
   {
     resolution = this->ChooseResolution(bounds);
     if (resolution <= 0)
@@ -974,7 +1035,7 @@ int vtkPiFlyingEdges::RequestData(
           box[2 * a + 1] =
             g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
         }
-        const int sign = kernel->ClassifyBox(box);
+        const int sign = evaluator.ClassifyBox(box);
         for (int z = lo[2]; z < hi[2]; ++z)
           for (int y = lo[1]; y < hi[1]; ++y)
             for (int x = lo[0]; x < hi[0]; ++x)
@@ -992,7 +1053,7 @@ int vtkPiFlyingEdges::RequestData(
       undecided.push_back(static_cast<vtkIdType>(b));
     }
   }
-  ClassifyBlocks classify{ kernel.get(), &g, &undecided };
+  ClassifyBlocks classify{ &evaluator, &g, &undecided };
   vtkSMPTools::For(0, static_cast<vtkIdType>(undecided.size()), classify);
   g.Slot.assign(g.Sign.size(), -1);
   for (size_t b = 0; b < g.Sign.size(); ++b)
@@ -1028,16 +1089,20 @@ int vtkPiFlyingEdges::RequestData(
         }
       }
   }
-  std::vector<double> coefficients(rows.size() * kernel->GetLineCoefficientCount());
-  RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+  std::vector<double> coefficients;
+  if (kernel)
+  {
+    coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
+    RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+  }
 
   // PASS 3: evaluate the points of the active blocks.
   // Every entry is written below: no need to clear.
   this->Internals->Values.resize(g.Active.size() * BlockPoints * BlockPoints * BlockPoints);
   g.Values = this->Internals->Values.data();
   std::atomic<bool> abort{ false };
-  SampleBlocks sample{ kernel.get(), &g, &rowIndex, &coefficients, this, &abort };
+  SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
   vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
   if (abort || this->CheckAbort())
   {
@@ -1180,7 +1245,7 @@ int vtkPiFlyingEdges::RequestData(
   const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
     (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  VertexAttributes attributes{ kernel.get(), &g, &vertexEdge, &vertexT, &vertexEnds, points,
+  VertexAttributes attributes{ &evaluator, &g, &vertexEdge, &vertexT, &vertexEnds, points,
     normals, factor,
     gradientMagnitude, this->ProjectVertices, 1e-13 * size };
   vtkSMPTools::For(0, vertices, attributes);
@@ -1207,7 +1272,7 @@ int vtkPiFlyingEdges::RequestData(
   }
 
   pisurf::Model model;
-  if (this->PiSurface->GetCoreModel(model))
+  if (!field && this->PiSurface->GetCoreModel(model))
   {
     if (!model.HasBounds)
     {
@@ -1220,7 +1285,7 @@ int vtkPiFlyingEdges::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
-  if (this->GeneratePrimitives && primitives)
+  if (this->GeneratePrimitives && primitives && !field)
   {
     this->MeshPrimitives(bounds, g.Dims, piece, pieces, primitives);
   }
@@ -1339,6 +1404,7 @@ void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "PiSurface: " << this->PiSurface << "\n";
+  os << indent << "Field: " << (this->Internals->Field ? "set" : "(none)") << "\n";
   os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
      << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
      << this->Bounds[5] << ")\n";

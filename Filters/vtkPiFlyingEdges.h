@@ -72,6 +72,12 @@
 
 class vtkPiSurface;
 class vtkPolyData;
+#ifndef __VTK_WRAP__
+namespace pisurf
+{
+class Field;
+}
+#endif
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiFlyingEdges : public vtkPolyDataAlgorithm
 {
@@ -85,6 +91,15 @@ public:
   void SetPiSurface(vtkPiSurface* surface);
   vtkGetObjectMacro(PiSurface, vtkPiSurface);
   ///@}
+
+#ifndef __VTK_WRAP__
+  /// Mesh this field instead of the Pi-surface's product (null, the default: the
+  /// product). For functions with their own evaluation structures, such as the
+  /// molecules of vtkPiMoleculeSurface. The field is meshed in Bounds, which must then
+  /// be set; AutomaticResolution, GeneratePrimitives and the `PiSurfaceModel` field data
+  /// do not apply (the caller describes its own model).
+  void SetField(std::shared_ptr<const pisurf::Field> field);
+#endif
 
   ///@{
   /// Region to sample [x0,x1,y0,y1,z0,z1]; all zero (the default) = the model's bounds.

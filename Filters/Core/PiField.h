@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PiField.h
+ * @brief an implicit function F the mesher can work on without a ProductKernel
+ *
+ * vtkPiFlyingEdges meshes a ProductKernel (a product of polynomial factors, restricted
+ * to grid rows) or, through this interface, any function that answers the same four
+ * questions. A function whose factors are not worth evaluating at every point, such as
+ * a molecule of 10^5 atoms where only the atoms near a point matter, implements it with
+ * its own spatial structures (see PiMolecule.h).
+ *
+ * Contract, shared with ProductKernel: the sign of F is exact; F is clamped to
+ * ±DBL_MAX; every method is const and reentrant (many threads share one field); the
+ * same point always evaluates to the same value, whichever block or edge asks.
+ */
+#ifndef PiField_h
+#define PiField_h
+
+namespace pisurf
+{
+
+class Field
+{
+public:
+  virtual ~Field() = default;
+
+  /// Over the box [b0,b1]x[b2,b3]x[b4,b5]: +1 if F > 0 everywhere, −1 if F < 0
+  /// everywhere, 0 if the surface may cross it. Must never be wrong when not 0.
+  virtual int ClassifyBox(const double box[6]) const = 0;
+  /// F(p), clamped to ±DBL_MAX with its exact sign.
+  virtual double Evaluate(const double p[3]) const = 0;
+  /// sign(F)·ln(1 + |F|) without overflow: the same zero set, for root finding where F
+  /// is huge.
+  virtual double EvaluateCompressed(const double p[3]) const = 0;
+  /// At a surface vertex: unit normal ∇F/|∇F| (0 where ∇F = 0), |∇F| (clamped) and the
+  /// factor (for a molecule: the atom) whose zero set is nearest.
+  virtual void EvaluateVertex(
+    const double p[3], double normal[3], double& gradientNorm, int& nearest) const = 0;
+};
+}
+
+#endif

@@ -1,0 +1,648 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiMolecule.h"
+
+#include "PiProduct.h" // SignOfProductMinus
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+
+namespace pisurf
+{
+
+namespace
+{
+// { atomic number, radius in Å }.
+struct Entry
+{
+  int Z;
+  double Radius;
+};
+
+// Bondi, J. Phys. Chem. 68 (1964) 441, Table I (the values in common use).
+const Entry BondiTable[] = { { 1, 1.20 }, { 2, 1.40 }, { 3, 1.82 }, { 6, 1.70 }, { 7, 1.55 },
+  { 8, 1.52 }, { 9, 1.47 }, { 10, 1.54 }, { 11, 2.27 }, { 12, 1.73 }, { 14, 2.10 },
+  { 15, 1.80 }, { 16, 1.80 }, { 17, 1.75 }, { 18, 1.88 }, { 19, 2.75 }, { 28, 1.63 },
+  { 29, 1.40 }, { 30, 1.39 }, { 31, 1.87 }, { 33, 1.85 }, { 34, 1.90 }, { 35, 1.85 },
+  { 36, 2.02 }, { 46, 1.63 }, { 47, 1.72 }, { 48, 1.58 }, { 49, 1.93 }, { 50, 2.17 },
+  { 52, 2.06 }, { 53, 1.98 }, { 54, 2.16 }, { 78, 1.72 }, { 79, 1.66 }, { 80, 1.55 },
+  { 81, 1.96 }, { 82, 2.02 }, { 92, 1.86 } };
+
+// Batsanov, Inorganic Materials 37 (2001) 871, crystallographic van der Waals radii;
+// H from Rowland and Taylor, J. Phys. Chem. 100 (1996) 7384.
+const Entry BatsanovTable[] = { { 1, 1.10 }, { 3, 2.20 }, { 4, 1.90 }, { 5, 1.80 },
+  { 6, 1.70 }, { 7, 1.60 }, { 8, 1.55 }, { 9, 1.50 }, { 11, 2.40 }, { 12, 2.20 },
+  { 13, 2.10 }, { 14, 2.10 }, { 15, 1.95 }, { 16, 1.80 }, { 17, 1.80 }, { 19, 2.80 },
+  { 20, 2.40 }, { 21, 2.30 }, { 22, 2.15 }, { 23, 2.05 }, { 24, 2.05 }, { 25, 2.05 },
+  { 26, 2.05 }, { 27, 2.00 }, { 28, 2.00 }, { 29, 2.00 }, { 30, 2.10 }, { 31, 2.10 },
+  { 32, 2.10 }, { 33, 2.05 }, { 34, 1.90 }, { 35, 1.90 }, { 37, 2.90 }, { 38, 2.55 },
+  { 39, 2.40 }, { 40, 2.30 }, { 41, 2.15 }, { 42, 2.10 }, { 43, 2.05 }, { 44, 2.05 },
+  { 45, 2.00 }, { 46, 2.05 }, { 47, 2.10 }, { 48, 2.20 }, { 49, 2.20 }, { 50, 2.25 },
+  { 51, 2.20 }, { 52, 2.10 }, { 53, 2.10 }, { 55, 3.00 } };
+
+template <size_t N>
+double Lookup(const Entry (&table)[N], int z)
+{
+  for (const Entry& e : table)
+  {
+    if (e.Z == z)
+    {
+      return e.Radius;
+    }
+  }
+  return 0.0;
+}
+
+constexpr double Big = 0x1p256;
+constexpr double Small = 0x1p-256;
+constexpr double Ln2 = 0.69314718055994530942;
+// ln(DBL_MAX): beyond it a value is clamped.
+constexpr double LogMax = 709.78;
+
+// A product m·2^e with the gradient G sharing the exponent.
+struct Scaled
+{
+  double M = 1.0;
+  double G[3] = { 0, 0, 0 };
+  long E = 0;
+
+  void Renormalise(bool gradient)
+  {
+    double a = std::fabs(this->M);
+    if (gradient)
+    {
+      a = std::max({ a, std::fabs(this->G[0]), std::fabs(this->G[1]), std::fabs(this->G[2]) });
+    }
+    if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
+    {
+      int ex;
+      std::frexp(a, &ex);
+      this->M = std::ldexp(this->M, -ex);
+      if (gradient)
+      {
+        for (double& g : this->G)
+        {
+          g = std::ldexp(g, -ex);
+        }
+      }
+      this->E += ex;
+    }
+  }
+  void Multiply(double f)
+  {
+    this->M *= f;
+    this->Renormalise(false);
+  }
+  void Multiply(double f, const double gf[3])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      this->G[k] = this->G[k] * f + this->M * gf[k];
+    }
+    this->M *= f;
+    this->Renormalise(true);
+  }
+  // ln|m·2^e| (−inf for 0).
+  double Log() const
+  {
+    return this->M == 0.0 ? -HUGE_VAL : std::log(std::fabs(this->M)) + this->E * Ln2;
+  }
+};
+
+// F = m·2^e − level, clamped to ±DBL_MAX, with ln|F|.
+double Finish(const Scaled& s, double level, double& logAbsF)
+{
+  const double logP = s.Log();
+  if (logP > LogMax - 20)
+  {
+    logAbsF = logP; // level is negligible against |P| > 1e299
+    return logP > LogMax ? std::copysign(DBL_MAX, s.M) : std::ldexp(s.M, s.E) - level;
+  }
+  if (level == 0.0 && s.M != 0.0 && logP < -740)
+  {
+    // Below the smallest double: keep the sign with the smallest denormal.
+    logAbsF = logP;
+    return std::copysign(std::numeric_limits<double>::denorm_min(), s.M);
+  }
+  const double F = (s.M == 0.0 ? 0.0 : std::ldexp(s.M, s.E)) - level;
+  logAbsF = F == 0.0 ? -HUGE_VAL : std::log(std::fabs(F));
+  return F;
+}
+
+double Distance2ToBox(const double c[3], const double box[6])
+{
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double t = c[a] < box[2 * a] ? box[2 * a] - c[a]
+                                       : (c[a] > box[2 * a + 1] ? c[a] - box[2 * a + 1] : 0.0);
+    d2 += t * t;
+  }
+  return d2;
+}
+
+double FarthestDistance2(const double c[3], const double box[6])
+{
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double t = std::max(std::fabs(c[a] - box[2 * a]), std::fabs(c[a] - box[2 * a + 1]));
+    d2 += t * t;
+  }
+  return d2;
+}
+
+// The Local weight w(u) = 1 − smoothstep5(u) on [0, 1] and its derivative.
+inline double Weight(double u, double& derivative)
+{
+  if (u <= 0.0)
+  {
+    derivative = 0.0;
+    return 1.0;
+  }
+  if (u >= 1.0)
+  {
+    derivative = 0.0;
+    return 0.0;
+  }
+  derivative = -30.0 * u * u * (1.0 - u) * (1.0 - u);
+  return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+}
+}
+
+double BondiRadius(int z)
+{
+  return Lookup(BondiTable, z);
+}
+
+double BatsanovRadius(int z)
+{
+  return Lookup(BatsanovTable, z);
+}
+
+struct MoleculeField::Cell
+{
+  std::vector<int> Near;
+  bool HasFar = false;
+  double Center[3] = { 0, 0, 0 };
+  double L0 = 0.0;
+  double G[3] = { 0, 0, 0 };
+  double H[6] = { 0, 0, 0, 0, 0, 0 }; // xx yy zz xy xz yz
+  double Bound = 0.0;
+};
+
+MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> radii,
+  const MoleculeSettings& settings, const double region[6])
+  : Centers(std::move(centers))
+  , Radii(std::move(radii))
+  , Settings(settings)
+{
+  if (this->Centers.size() != 3 * this->Radii.size())
+  {
+    throw std::invalid_argument("MoleculeField: 3 coordinates per radius expected");
+  }
+  const double r = this->Settings.Blending;
+  this->Level = this->Settings.Mode == MoleculeMode::Local ? r / (1.0 + r) : r;
+  double box[6] = { region[0], region[1], region[2], region[3], region[4], region[5] };
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    this->MaxReach = std::max(this->MaxReach, this->Reach(i));
+    for (int a = 0; a < 3; ++a)
+    {
+      box[2 * a] = std::min(box[2 * a], this->Centers[3 * i + a] - this->Reach(i));
+      box[2 * a + 1] = std::max(box[2 * a + 1], this->Centers[3 * i + a] + this->Reach(i));
+    }
+  }
+  const double s = this->Settings.CellSize;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Origin[a] = box[2 * a] - 0.5 * s;
+    this->Dims[a] = std::max(1, static_cast<int>(std::ceil((box[2 * a + 1] - box[2 * a]) / s)) + 1);
+  }
+  const size_t count = size_t(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  // Atoms by cell, for the neighbourhood queries.
+  std::vector<int> cellOf(this->Radii.size());
+  this->BinStart.assign(count + 1, 0);
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = std::min(this->Dims[a] - 1,
+        std::max(0, static_cast<int>(std::floor((this->Centers[3 * i + a] - this->Origin[a]) / s))));
+    }
+    cellOf[i] = (c[2] * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
+    ++this->BinStart[cellOf[i] + 1];
+  }
+  for (size_t c = 0; c < count; ++c)
+  {
+    this->BinStart[c + 1] += this->BinStart[c];
+  }
+  this->BinAtoms.resize(this->Radii.size());
+  std::vector<int> fill(this->BinStart.begin(), this->BinStart.end() - 1);
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    this->BinAtoms[fill[cellOf[i]]++] = static_cast<int>(i);
+  }
+  this->Cells.resize(count);
+  this->Once.reset(new std::once_flag[count]);
+}
+
+MoleculeField::~MoleculeField() = default;
+
+double MoleculeField::Reach(size_t i) const
+{
+  return this->Radii[i] +
+    (this->Settings.Mode == MoleculeMode::Local ? this->Settings.InfluenceRadius
+                                                : this->Settings.NearDistance);
+}
+
+double MoleculeField::AtomFactor(size_t i, const double p[3], double* g) const
+{
+  const double* c = &this->Centers[3 * i];
+  const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+  const double R2 = this->Radii[i] * this->Radii[i];
+  const double f = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2;
+  if (this->Settings.Mode == MoleculeMode::Global)
+  {
+    if (g)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        g[k] = 2.0 * v[k];
+      }
+    }
+    return f;
+  }
+  const double rho = this->Radii[i] + this->Settings.InfluenceRadius;
+  const double span = rho * rho - R2;
+  const double u = f / span;
+  double dw;
+  const double w = Weight(u, dw);
+  if (g)
+  {
+    // ∇g = w ∇f + (f − 1) w'(u) ∇u with ∇f = 2v, ∇u = 2v / span.
+    const double s = 2.0 * (w + (f - 1.0) * dw / span);
+    for (int k = 0; k < 3; ++k)
+    {
+      g[k] = s * v[k];
+    }
+  }
+  return 1.0 + (f - 1.0) * w;
+}
+
+const MoleculeField::Cell* MoleculeField::CellAt(const double p[3]) const
+{
+  int c[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double t = std::floor((p[a] - this->Origin[a]) / this->Settings.CellSize);
+    if (!(t >= 0 && t < this->Dims[a]))
+    {
+      return nullptr;
+    }
+    c[a] = static_cast<int>(t);
+  }
+  const long id = (long(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
+  Cell& cell = this->Cells[id];
+  std::call_once(this->Once[id], [&] { this->BuildCell(id, cell); });
+  return &cell;
+}
+
+void MoleculeField::BuildCell(long id, Cell& cell) const
+{
+  const double s = this->Settings.CellSize;
+  const int c[3] = { int(id % this->Dims[0]), int((id / this->Dims[0]) % this->Dims[1]),
+    int(id / (long(this->Dims[0]) * this->Dims[1])) };
+  double box[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = this->Origin[a] + c[a] * s;
+    box[2 * a + 1] = box[2 * a] + s;
+    cell.Center[a] = box[2 * a] + 0.5 * s;
+  }
+  // Near atoms: from the bins within MaxReach of the box.
+  const int reach = static_cast<int>(std::ceil(this->MaxReach / s));
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = std::max(0, c[a] - reach);
+    hi[a] = std::min(this->Dims[a] - 1, c[a] + reach);
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
+      {
+        const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
+        for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
+        {
+          const int i = this->BinAtoms[k];
+          const double R = this->Reach(i);
+          if (Distance2ToBox(&this->Centers[3 * i], box) < R * R)
+          {
+            cell.Near.push_back(i);
+          }
+        }
+      }
+  std::sort(cell.Near.begin(), cell.Near.end());
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    return;
+  }
+  // Far atoms: the Taylor polynomial of Σ ln f_j about the centre, and its bound.
+  const double h = 0.5 * std::sqrt(3.0) * s;
+  double boundSum = 0.0;
+  size_t next = 0;
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    if (next < cell.Near.size() && cell.Near[next] == static_cast<int>(i))
+    {
+      ++next;
+      continue;
+    }
+    cell.HasFar = true;
+    const double* ci = &this->Centers[3 * i];
+    const double v[3] = { cell.Center[0] - ci[0], cell.Center[1] - ci[1], cell.Center[2] - ci[2] };
+    const double R2 = this->Radii[i] * this->Radii[i];
+    const double q = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2;
+    cell.L0 += std::log(q);
+    for (int k = 0; k < 3; ++k)
+    {
+      cell.G[k] += 2.0 * v[k] / q;
+    }
+    const double q2 = q * q;
+    cell.H[0] += 2.0 / q - 4.0 * v[0] * v[0] / q2;
+    cell.H[1] += 2.0 / q - 4.0 * v[1] * v[1] / q2;
+    cell.H[2] += 2.0 / q - 4.0 * v[2] * v[2] / q2;
+    cell.H[3] -= 4.0 * v[0] * v[1] / q2;
+    cell.H[4] -= 4.0 * v[0] * v[2] / q2;
+    cell.H[5] -= 4.0 * v[1] * v[2] / q2;
+    const double e2 = Distance2ToBox(ci, box);
+    const double e = std::sqrt(e2);
+    const double qe = e2 - R2;
+    boundSum += std::max(4.0 / std::pow(qe, 1.5), e * (4.0 * e2 + 12.0 * R2) / (qe * qe * qe));
+  }
+  cell.Bound = h * h * h / 6.0 * boundSum;
+  double seen = this->MaxBound.load();
+  while (cell.Bound > seen && !this->MaxBound.compare_exchange_weak(seen, cell.Bound))
+  {
+  }
+}
+
+int MoleculeField::EvaluateExactSignAndLog(const double p[3], double& logAbs) const
+{
+  Scaled s;
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    s.Multiply(this->AtomFactor(i, p, nullptr));
+  }
+  logAbs = s.Log();
+  return s.M > 0 ? 1 : (s.M < 0 ? -1 : 0);
+}
+
+int MoleculeField::EvaluateApproximateSignAndLog(
+  const double p[3], double& logAbs, double& bound) const
+{
+  const Cell* cell = this->CellAt(p);
+  if (!cell)
+  {
+    bound = 0.0;
+    return this->EvaluateExactSignAndLog(p, logAbs);
+  }
+  Scaled s;
+  for (int i : cell->Near)
+  {
+    s.Multiply(this->AtomFactor(i, p, nullptr));
+  }
+  logAbs = s.Log();
+  bound = cell->Bound;
+  if (cell->HasFar)
+  {
+    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
+    const double* H = cell->H;
+    logAbs += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
+      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
+      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+  }
+  return s.M > 0 ? 1 : (s.M < 0 ? -1 : 0);
+}
+
+double MoleculeField::ComputeExact(const double p[3], double& logAbsF) const
+{
+  Scaled s;
+  for (size_t i = 0; i < this->Radii.size(); ++i)
+  {
+    s.Multiply(this->AtomFactor(i, p, nullptr));
+  }
+  return Finish(s, this->Level, logAbsF);
+}
+
+double MoleculeField::Compute(const double p[3], double& logAbsF) const
+{
+  const Cell* cell = this->CellAt(p);
+  if (!cell)
+  {
+    if (this->Settings.Mode == MoleculeMode::Local)
+    {
+      // Beyond every atom's influence: the product is 1.
+      const double F = 1.0 - this->Level;
+      logAbsF = std::log(std::fabs(F));
+      return F;
+    }
+    return this->ComputeExact(p, logAbsF);
+  }
+  Scaled s;
+  for (int i : cell->Near)
+  {
+    s.Multiply(this->AtomFactor(i, p, nullptr));
+  }
+  if (!cell->HasFar)
+  {
+    return Finish(s, this->Level, logAbsF); // every atom that matters is exact
+  }
+  double logP, bound;
+  double approxLog = s.Log();
+  {
+    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
+    const double* H = cell->H;
+    approxLog += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
+      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
+      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+    logP = approxLog;
+    bound = cell->Bound;
+  }
+  const double level = this->Level;
+  if (s.M == 0.0)
+  {
+    logAbsF = level == 0.0 ? -HUGE_VAL : std::log(level);
+    return -level;
+  }
+  if (s.M > 0 && level > 0 && std::fabs(logP - std::log(level)) <= bound + 1e-9)
+  {
+    // The approximation cannot decide the sign of P − r here: exact over all atoms.
+    ++this->ExactCount;
+    return this->ComputeExact(p, logAbsF);
+  }
+  // The sign of F is decided; |P| = e^logP within a factor e^±bound.
+  const double sign = s.M > 0 ? 1.0 : -1.0;
+  if (logP > LogMax - 20)
+  {
+    logAbsF = logP;
+    return logP > LogMax ? sign * DBL_MAX : sign * std::exp(logP) - level;
+  }
+  if (level == 0.0 && logP < -740)
+  {
+    logAbsF = logP;
+    return sign * std::numeric_limits<double>::denorm_min();
+  }
+  const double F = sign * std::exp(logP) - level;
+  logAbsF = std::log(std::fabs(F));
+  return F;
+}
+
+double MoleculeField::Evaluate(const double p[3]) const
+{
+  double logAbsF;
+  return this->Compute(p, logAbsF);
+}
+
+double MoleculeField::EvaluateCompressed(const double p[3]) const
+{
+  double logAbsF;
+  const double F = this->Compute(p, logAbsF);
+  if (F == 0.0)
+  {
+    return 0.0;
+  }
+  const double magnitude = std::fabs(F) < 1e200 ? std::log1p(std::fabs(F)) : logAbsF;
+  return std::copysign(magnitude, F);
+}
+
+void MoleculeField::EvaluateVertex(
+  const double p[3], double normal[3], double& gradientNorm, int& nearest) const
+{
+  const Cell* cell = this->CellAt(p);
+  std::vector<int> all;
+  const std::vector<int>* atoms = nullptr;
+  if (cell)
+  {
+    atoms = &cell->Near;
+  }
+  else if (this->Settings.Mode == MoleculeMode::Global)
+  {
+    all.resize(this->Radii.size());
+    for (size_t i = 0; i < all.size(); ++i)
+    {
+      all[i] = static_cast<int>(i);
+    }
+    atoms = &all;
+  }
+  Scaled s;
+  nearest = -1;
+  double best = HUGE_VAL;
+  if (atoms)
+  {
+    for (int i : *atoms)
+    {
+      double g[3];
+      const double f = this->AtomFactor(i, p, g);
+      s.Multiply(f, g);
+      const double* c = &this->Centers[3 * i];
+      const double d = std::sqrt((p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
+        (p[2] - c[2]) * (p[2] - c[2]));
+      const double distance = std::fabs(d - this->Radii[i]);
+      if (distance < best)
+      {
+        best = distance;
+        nearest = i;
+      }
+    }
+  }
+  // ∇P = 2^e e^L (G + m ∇L) with L the far atoms' log-sum.
+  double grad[3] = { s.G[0], s.G[1], s.G[2] };
+  double logScale = s.E * Ln2;
+  if (cell && cell->HasFar)
+  {
+    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
+    const double* H = cell->H;
+    const double gl[3] = { cell->G[0] + H[0] * d[0] + H[3] * d[1] + H[4] * d[2],
+      cell->G[1] + H[3] * d[0] + H[1] * d[1] + H[5] * d[2],
+      cell->G[2] + H[4] * d[0] + H[5] * d[1] + H[2] * d[2] };
+    for (int k = 0; k < 3; ++k)
+    {
+      grad[k] += s.M * gl[k];
+    }
+    logScale += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
+      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
+      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+  }
+  const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
+  if (norm == 0.0 || !std::isfinite(norm))
+  {
+    normal[0] = normal[1] = normal[2] = 0.0;
+    gradientNorm = 0.0;
+    return;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    normal[k] = grad[k] / norm;
+  }
+  const double logNorm = std::log(norm) + logScale;
+  gradientNorm = logNorm > LogMax ? DBL_MAX : std::exp(logNorm);
+}
+
+int MoleculeField::ClassifyBox(const double box[6]) const
+{
+  std::vector<Interval> enclosures;
+  auto add = [&](size_t i) {
+    const double* c = &this->Centers[3 * i];
+    const double R2 = this->Radii[i] * this->Radii[i];
+    const double dmin2 = Distance2ToBox(c, box);
+    const double fmin = dmin2 - R2, fmax = FarthestDistance2(c, box) - R2;
+    if (this->Settings.Mode == MoleculeMode::Global)
+    {
+      enclosures.push_back({ fmin, fmax });
+      return;
+    }
+    const double rho = this->Radii[i] + this->Settings.InfluenceRadius;
+    if (dmin2 >= rho * rho)
+    {
+      return; // g = 1 on the whole box
+    }
+    // g lies between f and 1 (g = f where f < 0).
+    enclosures.push_back({ std::min(fmin, 1.0), std::max(fmax, 1.0) });
+  };
+  if (this->Settings.Mode == MoleculeMode::Global)
+  {
+    enclosures.reserve(this->Radii.size());
+    for (size_t i = 0; i < this->Radii.size(); ++i)
+    {
+      add(i);
+    }
+  }
+  else
+  {
+    const double s = this->Settings.CellSize;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::max(0,
+        static_cast<int>(std::floor((box[2 * a] - this->MaxReach - this->Origin[a]) / s)));
+      hi[a] = std::min(this->Dims[a] - 1,
+        static_cast<int>(std::floor((box[2 * a + 1] + this->MaxReach - this->Origin[a]) / s)));
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x)
+        {
+          const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
+          for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
+          {
+            add(this->BinAtoms[k]);
+          }
+        }
+  }
+  return SignOfProductMinus(enclosures, this->Level);
+}
+}

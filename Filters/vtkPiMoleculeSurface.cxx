@@ -1,0 +1,493 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPiMoleculeSurface.h"
+
+#include "PiModel.h"
+#include "PiMolecule.h"
+#include "vtkPiFlyingEdges.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCleanPolyData.h"
+#include "vtkCommand.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
+#include "vtkPolyDataConnectivityFilter.h"
+#include "vtkStaticPointLocator.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMassProperties.h"
+#include "vtkMolecule.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPeriodicTable.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+vtkStandardNewMacro(vtkPiMoleculeSurface);
+
+namespace
+{
+// Global mode writes the model as .pisurf JSON up to this many atoms (beyond, only the
+// compact arrays).
+constexpr vtkIdType MaximumJsonAtoms = 10000;
+// Automatic spacing: 0.25 Å unless the grid would exceed this many points.
+constexpr double AutomaticSpacing = 0.25;
+constexpr double AutomaticMaximumPoints = 16777216.0; // 2^24
+}
+
+vtkPiMoleculeSurface::vtkPiMoleculeSurface()
+{
+  // RadiusTable = POINT_ARRAY reads this array (ParaView's PDB reader writes "radius").
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "radius");
+}
+vtkPiMoleculeSurface::~vtkPiMoleculeSurface() = default;
+
+int vtkPiMoleculeSurface::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMolecule");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkPiMoleculeSurface::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!std::isfinite(this->Blending) || this->Blending < 0)
+  {
+    vtkErrorMacro(<< "Blending must be a finite number >= 0, not " << this->Blending);
+    return 0;
+  }
+  if (!std::isfinite(this->InfluenceRadius) || this->InfluenceRadius <= 0)
+  {
+    vtkErrorMacro(<< "InfluenceRadius must be a finite number > 0, not " << this->InfluenceRadius);
+    return 0;
+  }
+  if (!std::isfinite(this->Spacing) || this->Spacing < 0)
+  {
+    vtkErrorMacro(<< "Spacing must be 0 (automatic) or a positive number of Å, not "
+                  << this->Spacing);
+    return 0;
+  }
+
+  // The atoms: positions, atomic numbers, and the point data (for a radius array).
+  vtkNew<vtkPoints> atoms;
+  std::vector<int> numbers;
+  vtkDataSetAttributes* atomData = nullptr;
+  if (auto molecule = vtkMolecule::SafeDownCast(input))
+  {
+    const vtkIdType n = molecule->GetNumberOfAtoms();
+    atoms->SetNumberOfPoints(n);
+    numbers.resize(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double x[3];
+      molecule->GetAtomPosition(i, x);
+      atoms->SetPoint(i, x);
+      numbers[i] = molecule->GetAtomAtomicNumber(i);
+    }
+    atomData = molecule->GetVertexData();
+  }
+  else if (auto poly = vtkPolyData::SafeDownCast(input))
+  {
+    const vtkIdType n = poly->GetNumberOfPoints();
+    vtkDataArray* z = poly->GetPointData()->GetArray("atom_type");
+    if (!z)
+    {
+      z = poly->GetPointData()->GetArray("AtomicNumber");
+    }
+    if (n > 0 && !z && this->RadiusTable != POINT_ARRAY)
+    {
+      vtkErrorMacro(<< "The input polydata has no point array 'atom_type' or 'AtomicNumber' "
+                       "(atomic numbers); use RadiusTable = point array with a radius array");
+      return 0;
+    }
+    atoms->SetNumberOfPoints(n);
+    numbers.assign(n, 0);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      atoms->SetPoint(i, poly->GetPoint(i));
+      if (z)
+      {
+        numbers[i] = static_cast<int>(z->GetComponent(i, 0));
+      }
+    }
+    atomData = poly->GetPointData();
+  }
+  else
+  {
+    vtkErrorMacro(<< "The input must be a vtkMolecule or a vtkPolyData of atoms");
+    return 0;
+  }
+  const vtkIdType count = atoms->GetNumberOfPoints();
+  if (count == 0)
+  {
+    vtkErrorMacro(<< "The input molecule has no atoms");
+    return 0;
+  }
+
+  // PASS 1: radii.
+  std::vector<double> centers(3 * count), radii(count);
+  vtkNew<vtkPeriodicTable> table;
+  vtkDataArray* radiusArray = nullptr;
+  if (this->RadiusTable == POINT_ARRAY)
+  {
+    radiusArray = this->GetInputArrayToProcess(0, inputVector);
+    if (!radiusArray && atomData)
+    {
+      radiusArray = atomData->GetArray("radius");
+    }
+    if (!radiusArray)
+    {
+      vtkErrorMacro(<< "RadiusTable is a point array, but the input has no such array "
+                       "(set the input array to process, e.g. 'radius')");
+      return 0;
+    }
+    if (radiusArray->GetNumberOfTuples() != count)
+    {
+      vtkErrorMacro(<< "The radius array '" << (radiusArray->GetName() ? radiusArray->GetName() : "")
+                    << "' has " << radiusArray->GetNumberOfTuples() << " values for " << count
+                    << " atoms");
+      return 0;
+    }
+  }
+  std::map<int, int> missing; // element -> atoms that fell back to Blue Obelisk
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    atoms->GetPoint(i, &centers[3 * i]);
+    for (int a = 0; a < 3; ++a)
+    {
+      if (!std::isfinite(centers[3 * i + a]))
+      {
+        vtkErrorMacro(<< "Atom " << i << " has a coordinate that is not a finite number");
+        return 0;
+      }
+    }
+    const int z = numbers[i];
+    double R = 0.0;
+    switch (this->RadiusTable)
+    {
+      case BONDI:
+        R = pisurf::BondiRadius(z);
+        break;
+      case BATSANOV:
+        R = pisurf::BatsanovRadius(z);
+        break;
+      case BLUE_OBELISK:
+        R = z > 0 && z <= table->GetNumberOfElements() ? table->GetVDWRadius(z) : 0.0;
+        break;
+      default:
+        R = radiusArray->GetComponent(i, 0);
+        if (!(std::isfinite(R) && R > 0))
+        {
+          vtkErrorMacro(<< "Atom " << i << " has the radius " << R << " in '"
+                        << (radiusArray->GetName() ? radiusArray->GetName() : "") << "'");
+          return 0;
+        }
+    }
+    if (R <= 0)
+    {
+      ++missing[z];
+      R = z > 0 && z <= table->GetNumberOfElements() ? table->GetVDWRadius(z) : 0.0;
+      if (!(R > 0))
+      {
+        R = 1.7; // an unknown element (X): carbon's Bondi radius
+      }
+    }
+    radii[i] = R * this->RadiusScale;
+  }
+  if (!missing.empty())
+  {
+    std::ostringstream list;
+    for (const auto& m : missing)
+    {
+      list << " " << (m.first > 0 && m.first <= table->GetNumberOfElements() ? table->GetSymbol(m.first) : "X")
+           << " (" << m.second << " atoms)";
+    }
+    vtkWarningMacro(<< "No radius in the chosen table for:" << list.str()
+                    << "; using the Blue Obelisk radius (1.7 Å for unknown elements)");
+  }
+
+  pisurf::MoleculeSettings settings;
+  settings.Mode = this->Mode == LOCAL ? pisurf::MoleculeMode::Local : pisurf::MoleculeMode::Global;
+  settings.Blending = this->Blending;
+  settings.InfluenceRadius = this->InfluenceRadius;
+
+  // PASS 2: bounds. The atoms' boxes, grown until F > 0 on the whole boundary (checked
+  // with interval bounds on 8 x 8 tiles of each face). Local: F = 1 − level > 0 beyond
+  // every atom's influence, so R + InfluenceRadius always suffices.
+  double atomBox[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  double maxRadius = 0.0;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    maxRadius = std::max(maxRadius, radii[i]);
+    for (int a = 0; a < 3; ++a)
+    {
+      atomBox[2 * a] = std::min(atomBox[2 * a], centers[3 * i + a] - radii[i]);
+      atomBox[2 * a + 1] = std::max(atomBox[2 * a + 1], centers[3 * i + a] + radii[i]);
+    }
+  }
+  std::shared_ptr<const pisurf::MoleculeField> field;
+  double bounds[6];
+  double margin = this->Mode == LOCAL ? this->InfluenceRadius : 0.5;
+  for (int attempt = 0;; ++attempt)
+  {
+    for (int a = 0; a < 6; ++a)
+    {
+      bounds[a] = atomBox[a] + (a % 2 ? margin : -margin);
+    }
+    field = std::make_shared<pisurf::MoleculeField>(centers, radii, settings, bounds);
+    if (this->Mode == LOCAL)
+    {
+      break;
+    }
+    bool positive = true;
+    for (int a = 0; a < 3 && positive; ++a)
+    {
+      const int u = (a + 1) % 3, w = (a + 2) % 3;
+      for (int side = 0; side < 2 && positive; ++side)
+        for (int p = 0; p < 8 && positive; ++p)
+          for (int q = 0; q < 8 && positive; ++q)
+          {
+            double tile[6];
+            tile[2 * a] = tile[2 * a + 1] = bounds[2 * a + side];
+            tile[2 * u] = bounds[2 * u] + p * (bounds[2 * u + 1] - bounds[2 * u]) / 8;
+            tile[2 * u + 1] = bounds[2 * u] + (p + 1) * (bounds[2 * u + 1] - bounds[2 * u]) / 8;
+            tile[2 * w] = bounds[2 * w] + q * (bounds[2 * w + 1] - bounds[2 * w]) / 8;
+            tile[2 * w + 1] = bounds[2 * w] + (q + 1) * (bounds[2 * w + 1] - bounds[2 * w]) / 8;
+            positive = field->ClassifyBox(tile) > 0;
+          }
+    }
+    if (positive)
+    {
+      break;
+    }
+    if (attempt == 12)
+    {
+      vtkWarningMacro(<< "F is not positive on the whole boundary of the bounds even "
+                      << margin << " Å beyond the atoms: the mesh may be open (Blending "
+                      << this->Blending << " is very large)");
+      break;
+    }
+    margin *= 2;
+  }
+
+  // PASS 3: the grid. Automatic spacing: 0.25 Å, coarser if the grid would exceed 2^24
+  // points.
+  double volume = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    volume *= bounds[2 * a + 1] - bounds[2 * a];
+  }
+  double spacing = this->Spacing;
+  if (spacing == 0.0)
+  {
+    spacing = std::max(AutomaticSpacing, std::cbrt(volume / AutomaticMaximumPoints) * 1.01);
+  }
+  int dims[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double side = bounds[2 * a + 1] - bounds[2 * a];
+    dims[a] = static_cast<int>(std::ceil(side / spacing)) + 1;
+    // Centre the grid on the box with exactly this spacing.
+    const double extra = (dims[a] - 1) * spacing - side;
+    bounds[2 * a] -= 0.5 * extra;
+    bounds[2 * a + 1] = bounds[2 * a] + (dims[a] - 1) * spacing;
+  }
+  this->LastSpacing = spacing;
+  // The field's cells must cover the final bounds: rebuild (cheap, cells are lazy).
+  field = std::make_shared<pisurf::MoleculeField>(centers, radii, settings, bounds);
+
+  // PASS 4: mesh with the Pi-surface mesher.
+  vtkNew<vtkPiFlyingEdges> mesher;
+  mesher->SetField(field);
+  mesher->SetBounds(bounds);
+  mesher->SetSampleDimensions(dims);
+  mesher->SetOuterEnvelope(this->OuterEnvelope);
+  mesher->SetProjectVertices(true);
+  mesher->SetGeneratePrimitives(false);
+  // Forward the mesher's complaints (a grid too large, an empty mesh) as ours.
+  vtkNew<vtkCallbackCommand> forward;
+  struct Messages
+  {
+    std::string Error, Warning;
+  } messages;
+  forward->SetClientData(&messages);
+  forward->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
+    auto* m = static_cast<Messages*>(client);
+    (event == vtkCommand::ErrorEvent ? m->Error : m->Warning) = static_cast<const char*>(data);
+  });
+  mesher->AddObserver(vtkCommand::ErrorEvent, forward);
+  mesher->AddObserver(vtkCommand::WarningEvent, forward);
+  mesher->Update();
+  if (!messages.Error.empty())
+  {
+    vtkErrorMacro(<< "Meshing failed: " << messages.Error);
+    return 0;
+  }
+  if (!messages.Warning.empty())
+  {
+    vtkWarningMacro(<< messages.Warning);
+  }
+  output->ShallowCopy(mesher->GetOutput());
+  if (this->OuterEnvelope && output->GetNumberOfPoints() > 0)
+  {
+    // PASS 4b: at small r the F < 0 layer between the outside and a lens (where two
+    // atoms overlap, the product of two negative factors is positive) is thinner than
+    // the grid, so the envelope's flood fill leaks into the lens and keeps its sheet.
+    // Such a sheet lies inside the molecule: drop every connected component whose
+    // vertices are mostly inside an atom other than their nearest one.
+    vtkNew<vtkPolyDataConnectivityFilter> connectivity;
+    vtkNew<vtkPolyData> mesh;
+    mesh->ShallowCopy(output);
+    connectivity->SetInputData(mesh);
+    connectivity->SetExtractionModeToAllRegions();
+    connectivity->ColorRegionsOn();
+    connectivity->Update();
+    const int regions = connectivity->GetNumberOfExtractedRegions();
+    vtkPolyData* colored = connectivity->GetOutput();
+    vtkDataArray* regionId = colored->GetPointData()->GetArray("RegionId");
+    if (regions > 1 && regionId)
+    {
+      vtkNew<vtkStaticPointLocator> locator;
+      vtkNew<vtkPolyData> atomSet;
+      atomSet->SetPoints(atoms);
+      locator->SetDataSet(atomSet);
+      locator->BuildLocator();
+      std::vector<vtkIdType> inside(regions, 0), total(regions, 0);
+      vtkNew<vtkIdList> nearby;
+      for (vtkIdType v = 0; v < colored->GetNumberOfPoints(); ++v)
+      {
+        double x[3];
+        colored->GetPoint(v, x);
+        const int region = static_cast<int>(regionId->GetComponent(v, 0));
+        locator->FindPointsWithinRadius(maxRadius, x, nearby);
+        // Inside an atom by more than 1% of its radius: not on its own sphere's patch.
+        bool in = false;
+        for (vtkIdType k = 0; k < nearby->GetNumberOfIds() && !in; ++k)
+        {
+          const vtkIdType a = nearby->GetId(k);
+          const double R = 0.99 * radii[a];
+          in = vtkMath::Distance2BetweenPoints(x, &centers[3 * a]) < R * R;
+        }
+        inside[region] += in;
+        ++total[region];
+      }
+      vtkNew<vtkIdList> keep;
+      for (int region = 0; region < regions; ++region)
+      {
+        if (2 * inside[region] <= total[region])
+        {
+          keep->InsertNextId(region);
+        }
+      }
+      if (keep->GetNumberOfIds() < regions && keep->GetNumberOfIds() > 0)
+      {
+        vtkNew<vtkPolyDataConnectivityFilter> extract;
+        extract->SetInputData(mesh);
+        extract->SetExtractionModeToSpecifiedRegions();
+        for (vtkIdType k = 0; k < keep->GetNumberOfIds(); ++k)
+        {
+          extract->AddSpecifiedRegion(static_cast<int>(keep->GetId(k)));
+        }
+        extract->Update();
+        vtkNew<vtkCleanPolyData> clean; // drop the removed sheets' points
+        clean->SetInputConnection(extract->GetOutputPort());
+        clean->PointMergingOff();
+        clean->Update();
+        output->ShallowCopy(clean->GetOutput());
+      }
+    }
+  }
+
+  // PASS 5: attributes.
+  vtkIntArray* factor = vtkIntArray::SafeDownCast(output->GetPointData()->GetArray("Factor"));
+  vtkNew<vtkIntArray> atomicNumber;
+  atomicNumber->SetName("AtomicNumber");
+  atomicNumber->SetNumberOfTuples(output->GetNumberOfPoints());
+  for (vtkIdType v = 0; v < output->GetNumberOfPoints(); ++v)
+  {
+    const int atom = factor ? factor->GetValue(v) : -1;
+    atomicNumber->SetValue(v, atom >= 0 && atom < count ? numbers[atom] : 0);
+  }
+  output->GetPointData()->AddArray(atomicNumber);
+
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkDoubleArray> centerArray;
+  centerArray->SetName("PiMoleculeCenters");
+  centerArray->SetNumberOfComponents(3);
+  centerArray->SetNumberOfTuples(count);
+  vtkNew<vtkDoubleArray> radiusOut;
+  radiusOut->SetName("PiMoleculeRadii");
+  radiusOut->SetNumberOfTuples(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    centerArray->SetTypedTuple(i, &centers[3 * i]);
+    radiusOut->SetValue(i, radii[i]);
+  }
+  fd->AddArray(centerArray);
+  fd->AddArray(radiusOut);
+  if (this->Mode == GLOBAL && count <= MaximumJsonAtoms)
+  {
+    pisurf::Model model;
+    model.Name = "molecule";
+    model.Blending = this->Blending;
+    model.HasBounds = true;
+    std::copy(bounds, bounds + 6, model.Bounds);
+    model.Primitives.resize(count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      pisurf::PrimitiveSpec& s = model.Primitives[i];
+      s.Type = pisurf::PrimitiveType::Sphere;
+      std::copy(&centers[3 * i], &centers[3 * i] + 3, s.Center);
+      s.Radius = radii[i];
+    }
+    vtkNew<vtkStringArray> json;
+    json->SetName("PiSurfaceModel");
+    json->InsertNextValue(pisurf::WriteModel(model));
+    fd->AddArray(json);
+  }
+  if (output->GetNumberOfCells() > 0)
+  {
+    vtkNew<vtkPolyData> mesh;
+    mesh->ShallowCopy(output);
+    vtkNew<vtkMassProperties> mass;
+    mass->SetInputData(mesh);
+    mass->Update();
+    vtkNew<vtkDoubleArray> area, enclosed;
+    area->SetName("SurfaceArea");
+    area->InsertNextValue(mass->GetSurfaceArea());
+    enclosed->SetName("EnclosedVolume");
+    enclosed->InsertNextValue(mass->GetVolume());
+    fd->AddArray(area);
+    fd->AddArray(enclosed);
+  }
+  return 1;
+}
+
+void vtkPiMoleculeSurface::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RadiusTable: " << this->RadiusTable << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "Mode: " << (this->Mode == LOCAL ? "Local" : "Global") << "\n";
+  os << indent << "Blending: " << this->Blending << "\n";
+  os << indent << "InfluenceRadius: " << this->InfluenceRadius << "\n";
+  os << indent << "Spacing: " << this->Spacing << "\n";
+  os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "LastSpacing: " << this->LastSpacing << "\n";
+}

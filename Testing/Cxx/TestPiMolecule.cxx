@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Molecular Pi-surfaces: the paper's molecules, CML files, proteins, NMR models, bad files.
+#include "PiTestUtilities.h"
+
+#include "vtkCMLMoleculeReader.h"
+#include "vtkFieldData.h"
+#include "vtkMolecule.h"
+#include "vtkNew.h"
+#include "vtkPDBReader.h"
+#include "vtkPiMoleculeReader.h"
+#include "vtkPiMoleculeSurface.h"
+#include "vtkPiSurface.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataConnectivityFilter.h"
+#include "vtkStringArray.h"
+
+#include <fstream>
+#include <string>
+
+namespace
+{
+const std::string Freesasa = "/usr/share/freesasa/test-data/";
+const std::string Chemical = "/usr/share/chemical-structures/";
+
+int Components(vtkPolyData* mesh)
+{
+  vtkNew<vtkPolyDataConnectivityFilter> c;
+  c->SetInputData(mesh);
+  c->SetExtractionModeToAllRegions();
+  c->Update();
+  return c->GetNumberOfExtractedRegions();
+}
+
+// The paper's molecule: the model is the paper's product of spheres with r = 1, the
+// mesh one component.
+int PaperMolecule(const double atoms[][4], int n)
+{
+  int failures = 0;
+  vtkNew<vtkMolecule> molecule;
+  for (int i = 0; i < n; ++i)
+  {
+    molecule->AppendAtom(static_cast<unsigned short>(atoms[i][0]), atoms[i][1], atoms[i][2], atoms[i][3]);
+  }
+  vtkNew<vtkPiMoleculeSurface> surface;
+  surface->SetInputData(molecule);
+  surface->Update();
+  vtkPolyData* out = surface->GetOutput();
+  PI_CHECK(out->GetNumberOfCells() > 100);
+  PI_CHECK(Components(out) == 1);
+  PI_CHECK(out->GetPointData()->GetArray("Normals") && out->GetPointData()->GetArray("Factor") &&
+    out->GetPointData()->GetArray("AtomicNumber"));
+  auto json = vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
+  PI_CHECK(json != nullptr);
+  if (!json)
+  {
+    return failures;
+  }
+  vtkNew<vtkPiSurface> model;
+  PI_CHECK(model->SetModelJSON(json->GetValue(0)));
+  PI_CHECK(model->GetNumberOfFactors() == n);
+  PI_CHECK_NEAR(model->GetBlending(), 1.0, 0.0);
+  // F equals the paper's polynomial Π((x−x_i)² + (y−y_i)² + z² − R_i²) − 1 (Bondi radii).
+  for (double p[3] = { 1.0, -2.0, 0.5 }; p[0] < 30; p[0] += 7.3, p[1] -= 6.1)
+  {
+    double expected = 1.0;
+    for (int i = 0; i < n; ++i)
+    {
+      const double R = atoms[i][0] == 8 ? 1.52 : 1.70;
+      expected *= (p[0] - atoms[i][1]) * (p[0] - atoms[i][1]) +
+        (p[1] - atoms[i][2]) * (p[1] - atoms[i][2]) + (p[2] - atoms[i][3]) * (p[2] - atoms[i][3]) -
+        R * R;
+    }
+    expected -= 1.0;
+    // vtkMolecule stores float coordinates: relative 1e-5.
+    PI_CHECK_NEAR(model->EvaluateFunction(p), expected, 1e-5 * (std::fabs(expected) + 1));
+  }
+  return failures;
+}
+
+int Mesh(vtkAlgorithm* source, int mode, double spacing, vtkIdType minimumTriangles,
+  int components = -1)
+{
+  int failures = 0;
+  vtkNew<vtkPiMoleculeSurface> surface;
+  surface->SetInputConnection(source->GetOutputPort());
+  surface->SetMode(mode);
+  surface->SetSpacing(spacing);
+  surface->Update();
+  vtkPolyData* out = surface->GetOutput();
+  PI_CHECK(out->GetNumberOfCells() >= minimumTriangles);
+  if (components > 0)
+  {
+    PI_CHECK(Components(out) == components);
+  }
+  PI_CHECK(out->GetFieldData()->GetArray("SurfaceArea") != nullptr);
+  if (failures)
+  {
+    std::cerr << "  while meshing (mode " << mode << ", spacing " << spacing << ")\n";
+  }
+  return failures;
+}
+
+int BadFile(const std::string& path, const std::string& text)
+{
+  int failures = 0;
+  vtkNew<vtkPiMoleculeReader> reader;
+  pitest::Watch watch(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  PI_CHECK(watch.Error(text));
+  PI_CHECK(reader->GetOutput()->GetNumberOfAtoms() == 0);
+  return failures;
+}
+}
+
+int TestPiMolecule(int, char*[])
+{
+  int failures = 0;
+
+  // The paper's formic and acetic acid (its coordinates, Bondi radii).
+  const double formic[][4] = { { 8, 2.310, -1.334, 0.0 }, { 6, 3.644, -2.104, 0.0 },
+    { 8, 4.977, -1.334, 0.0 } };
+  const double acetic[][4] = { { 6, 24.214, -24.150, 0.0 }, { 6, 25.548, -23.380, 0.0 },
+    { 8, 26.881, -24.150, 0.0 }, { 8, 25.548, -21.840, 0.0 } };
+  failures += PaperMolecule(formic, 3);
+  failures += PaperMolecule(acetic, 4);
+
+  // CML files through VTK's reader.
+  for (const char* name : { "carboxylic_acids/formic_acid", "carboxylic_acids/acetic_acid",
+         "nucleobases/adenine", "nucleobases/cytosine", "nucleobases/guanine",
+         "nucleobases/thymine", "nucleobases/uracil" })
+  {
+    vtkNew<vtkCMLMoleculeReader> cml;
+    cml->SetFileName((Chemical + name + ".cml").c_str());
+    const int before = failures;
+    failures += Mesh(cml, vtkPiMoleculeSurface::GLOBAL, 0.25, 500, 1);
+    failures += Mesh(cml, vtkPiMoleculeSurface::LOCAL, 0.25, 500, 1);
+    if (failures != before)
+    {
+      std::cerr << "  in " << name << "\n";
+    }
+  }
+
+  // Proteins: 1ubq Global (our reader: no waters by default, so one component), 1a0q
+  // Local, and 1ubq from ParaView's stock PDB reader (polydata with atom_type).
+  {
+    vtkNew<vtkPiMoleculeReader> reader;
+    reader->SetFileName((Freesasa + "1ubq.pdb").c_str());
+    reader->Update();
+    PI_CHECK(reader->GetOutput()->GetNumberOfAtoms() == 602);
+    failures += Mesh(reader, vtkPiMoleculeSurface::GLOBAL, 0.5, 50000);
+    reader->IncludeWatersOn();
+    reader->Update();
+    PI_CHECK(reader->GetOutput()->GetNumberOfAtoms() == 660);
+    vtkNew<vtkPiMoleculeReader> large;
+    large->SetFileName((Freesasa + "1a0q.pdb").c_str());
+    failures += Mesh(large, vtkPiMoleculeSurface::LOCAL, 0.5, 100000);
+    vtkNew<vtkPDBReader> stock;
+    stock->SetFileName((Freesasa + "1ubq.pdb").c_str());
+    failures += Mesh(stock, vtkPiMoleculeSurface::GLOBAL, 0.5, 50000);
+  }
+
+  // NMR: 10 models with hydrogens; models differ; a missing model is an error.
+  {
+    vtkNew<vtkPiMoleculeReader> nmr;
+    nmr->SetFileName((Freesasa + "1d3z.pdb").c_str());
+    nmr->Update();
+    PI_CHECK(nmr->GetNumberOfModels() == 10);
+    const vtkIdType all = nmr->GetOutput()->GetNumberOfAtoms();
+    double first[3], second[3];
+    nmr->GetOutput()->GetAtomPosition(0, first);
+    nmr->SetModel(2);
+    nmr->Update();
+    nmr->GetOutput()->GetAtomPosition(0, second);
+    PI_CHECK(nmr->GetOutput()->GetNumberOfAtoms() == all);
+    PI_CHECK(first[0] != second[0] || first[1] != second[1] || first[2] != second[2]);
+    nmr->IncludeHydrogensOff();
+    nmr->Update();
+    PI_CHECK(nmr->GetOutput()->GetNumberOfAtoms() < all / 2 + 50);
+    pitest::Watch watch(nmr);
+    nmr->SetModel(11);
+    nmr->Update();
+    PI_CHECK(watch.Error("Model 11 requested"));
+  }
+
+  // Bad files: missing, empty, garbage, truncated mid-record, mmCIF without atoms.
+  const std::string temp = PISURF_TEMP_DIR;
+  {
+    std::ofstream(temp + "/empty.pdb");
+    std::ofstream(temp + "/garbage.pdb") << "this is not\x01\x02 a molecule\n";
+    std::ifstream in(Freesasa + "1ubq.pdb");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t cut = text.find("ATOM      2 ");
+    std::ofstream(temp + "/truncated.pdb") << text.substr(0, cut + 30);
+    std::ofstream(temp + "/noatoms.cif") << "data_x\nloop_\n_atom_site.id\n_atom_site.Cartn_x\n1 2\n";
+  }
+  failures += BadFile(temp + "/missing.pdb", "Cannot open");
+  failures += BadFile(temp + "/empty.pdb", "no ATOM/HETATM records");
+  failures += BadFile(temp + "/garbage.pdb", "garbage.pdb");
+  failures += BadFile(temp + "/truncated.pdb", "truncated.pdb");
+  failures += BadFile(temp + "/noatoms.cif", "noatoms.cif");
+
+  // An empty molecule is an error of the filter, not an empty success.
+  {
+    vtkNew<vtkMolecule> empty;
+    vtkNew<vtkPiMoleculeSurface> surface;
+    pitest::Watch watch(surface);
+    surface->SetInputData(empty);
+    surface->Update();
+    PI_CHECK(watch.Error("no atoms"));
+  }
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
