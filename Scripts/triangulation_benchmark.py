@@ -1,0 +1,126 @@
+"""Image-based triangulation benchmark (./run bench): one ray-cast cloud, three meshes.
+
+    pvpython triangulation_benchmark.py MODELS_DIR [N]   (N pixels per side, default 512)
+
+On the six axis views (first hits, N x N each) of the cup and formic acid, with the
+STDThread backend:
+  ours      vtkPiImageTriangulator on the whole cloud (ray lattice, closed mesh)
+  delaunay  vtkDelaunay2D on each view's hits (projected on the view's image plane),
+            what a VTK user would write to connect one view's samples
+  fe        vtkPiFlyingEdges at the resolution giving about the same vertex count
+Accuracy: max and RMS |F|/|grad F| at the vertices relative to the model size, and
+the RMS |F|/|grad F| at triangle centroids (how far the triangles leave the surface).
+"""
+import math
+import sys
+import time
+
+from pisurfaces import vtkPiFlyingEdges, vtkPiImageTriangulator, vtkPiRayCaster, vtkPiSurface
+from vtkmodules.vtkCommonCore import vtkSMPTools
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkDelaunay2D, vtkThreshold
+from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
+
+
+def distance(surface, p):
+    g = [0.0, 0.0, 0.0]
+    f = surface.EvaluateFunction(p)
+    surface.EvaluateGradient(p, g)
+    return abs(f) / max(math.sqrt(sum(x * x for x in g)), 1e-300)
+
+
+def accuracy(surface, mesh, size, samples=4000):
+    n = mesh.GetNumberOfPoints()
+    step = max(1, n // samples)
+    d = [distance(surface, mesh.GetPoint(k)) / size for k in range(0, n, step)]
+    cells = mesh.GetNumberOfCells()
+    cstep = max(1, cells // samples)
+    c = []
+    for k in range(0, cells, cstep):
+        ids = mesh.GetCell(k).GetPointIds()
+        if ids.GetNumberOfIds() != 3:
+            continue
+        q = [sum(mesh.GetPoint(ids.GetId(v))[a] for v in range(3)) / 3 for a in range(3)]
+        c.append(distance(surface, q) / size)
+    rms = lambda x: math.sqrt(sum(v * v for v in x) / max(len(x), 1))
+    return max(d), rms(d), rms(c)
+
+
+def main():
+    models = sys.argv[1]
+    n = int(sys.argv[2]) if len(sys.argv) > 2 else 512
+    vtkSMPTools.SetBackend("STDThread")
+    print("\nImage-based triangulation, six axis views of %d x %d first hits, STDThread" % (n, n))
+    print("%-12s %-22s %9s %9s %9s %11s %11s %11s" % (
+        "model", "method", "time s", "vertices", "ratio", "max vtx", "rms vtx", "rms centr"))
+    for name in ("cup_a1.0", "formic_acid"):
+        surface = vtkPiSurface()
+        surface.LoadModel("%s/%s.pisurf" % (models, name))
+        b = [0.0] * 6
+        surface.GetModelBounds(b)
+        size = math.sqrt(sum((b[2 * a + 1] - b[2 * a]) ** 2 for a in range(3)))
+        caster = vtkPiRayCaster()
+        caster.SetPiSurface(surface)
+        caster.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
+        caster.SetResolution(n, n)
+        t = time.perf_counter()
+        caster.Update()
+        cast = time.perf_counter() - t
+        cloud = caster.GetOutput()
+
+        tri = vtkPiImageTriangulator()
+        tri.SetInputData(cloud)
+        t = time.perf_counter()
+        tri.Update()
+        ours = time.perf_counter() - t
+        mesh = tri.GetOutput()
+
+        # vtkDelaunay2D per view: each view's hits, in the view's (u, v) image plane.
+        t = time.perf_counter()
+        delaunay_triangles = 0
+        for view in range(6):
+            threshold = vtkThreshold()
+            threshold.SetInputData(cloud)
+            threshold.SetInputArrayToProcess(0, 0, 0, 0, "ViewIndex")
+            threshold.SetLowerThreshold(view - 0.5)
+            threshold.SetUpperThreshold(view + 0.5)
+            threshold.Update()
+            points = threshold.GetOutput().GetPoints()
+            if points is None:
+                continue
+            poly = vtkPolyData()
+            poly.SetPoints(points)
+            d2 = vtkDelaunay2D()
+            d2.SetInputData(poly)
+            d2.SetProjectionPlaneMode(2)  # best-fitting plane: the view's image plane
+            d2.Update()
+            delaunay_triangles += d2.GetOutput().GetNumberOfCells()
+        delaunay = time.perf_counter() - t
+
+        # Flying edges at about our vertex count.
+        fe = vtkPiFlyingEdges()
+        fe.SetPiSurface(surface)
+        res = int(n / 2)
+        for _ in range(6):
+            fe.SetResolution(res)
+            fe.Update()
+            ratio = mesh.GetNumberOfPoints() / max(fe.GetOutput().GetNumberOfPoints(), 1)
+            if abs(ratio - 1) < 0.05:
+                break
+            res = max(8, int(round(res * math.sqrt(ratio))))
+        t = time.perf_counter()
+        fe.Modified()
+        fe.Update()
+        fetime = time.perf_counter() - t
+
+        print("%-12s %-22s %9.3f %9d" % (name, "ray cast (input)", cast, cloud.GetNumberOfPoints()))
+        print("%-12s %-22s %9.3f %9d %9s %11.2e %11.2e %11.2e" % ((name, "ImageTriangulator", ours,
+            mesh.GetNumberOfPoints(), "1") + accuracy(surface, mesh, size)))
+        print("%-12s %-22s %9.3f %9d %8.1fx" % (name, "Delaunay2D per view", delaunay,
+            cloud.GetNumberOfPoints(), delaunay / ours))
+        print("%-12s %-22s %9.3f %9d %8.1fx %11.2e %11.2e %11.2e" % ((name, "FlyingEdges res %d" % res,
+            fetime, fe.GetOutput().GetNumberOfPoints(), fetime / ours) + accuracy(surface, fe.GetOutput(), size)))
+
+
+if __name__ == "__main__":
+    main()
