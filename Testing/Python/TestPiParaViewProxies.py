@@ -117,6 +117,24 @@ rays.UpdatePipeline()
 check(rays.GetDataInformation().GetPointDataInformation().GetArrayInformation("ViewIndex").GetComponentRange(0)[1] == 5,
       "six views")
 
+# Image Based Triangulation of the six views: a closed mesh of exact hits; its defaults
+# are the C++ defaults; the source's Method gives the same kind of mesh.
+from pisurfaces import vtkPiImageTriangulator, vtkPiSurfaceSource
+triangulation = ImageBasedTriangulation(Input=rays)
+cxx_tri = vtkPiImageTriangulator()
+check(triangulation.MergeMode == "Automatic" and cxx_tri.GetMergeMode() == 0, "MergeMode default")
+check(triangulation.SheetTolerance == cxx_tri.GetSheetTolerance(), "SheetTolerance default")
+check(triangulation.SingularTolerance == cxx_tri.GetSingularTolerance(), "SingularTolerance default")
+tri_mesh = servermanager.Fetch(triangulation)
+check(tri_mesh.GetNumberOfCells() > 1000, "triangulation has triangles")
+check(tri_mesh.GetFieldData().GetArray("BoundaryEdges").GetValue(0) == 0, "triangulation is closed")
+check(tri_mesh.GetPointData().GetArray("Singular") is not None, "Singular on the mesh")
+check(source.Method == "Flying Edges" and vtkPiSurfaceSource().GetMethod() == 0, "Method default")
+by_rays = PiSurface(Method="Ray Cast Triangulation", Resolution=48)
+by_rays_mesh = servermanager.Fetch(by_rays)
+check(by_rays_mesh.GetNumberOfCells() > 1000 and
+      by_rays_mesh.GetFieldData().GetArray("BoundaryEdges").GetValue(0) == 0, "Method Ray Cast Triangulation")
+
 extract = ExtractCellsByRegion(Input=wavelet, IntersectWith="Pi Surface Function")
 extract.IntersectWith.Model = model
 extract.UpdatePipeline()
