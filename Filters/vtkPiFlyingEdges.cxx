@@ -19,6 +19,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "PiMarchingCubes.h"
 #include "vtkMarchingCubesTriangleCases.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -130,12 +131,8 @@ constexpr int BlockCells = 8;
 constexpr int BlockPoints = BlockCells + 1;
 constexpr double ValueLimit = 1e300;
 
-// Marching-cubes corner offsets and edges (corner pairs), VTK's hexahedron order, as
-// used with vtkMarchingCubesTriangleCases.
-constexpr int Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
-  { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-constexpr int Edge[12][2] = { { 0, 1 }, { 1, 2 }, { 3, 2 }, { 0, 3 }, { 4, 5 }, { 5, 6 },
-  { 7, 6 }, { 4, 7 }, { 0, 4 }, { 1, 5 }, { 3, 7 }, { 2, 6 } };
+using pisurf::mc::Corner;
+using pisurf::mc::Edge;
 
 struct Grid
 {

@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "PiMarchingCubes.h"
 #include "vtkMarchingCubesTriangleCases.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -35,12 +36,8 @@ vtkStandardNewMacro(vtkPiImageTriangulator);
 
 namespace
 {
-// Marching-cubes corners and edges in VTK's hexahedron order
-// (vtkMarchingCubesTriangleCases).
-constexpr int Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
-  { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-constexpr int Edge[12][2] = { { 0, 1 }, { 1, 2 }, { 3, 2 }, { 0, 3 }, { 4, 5 }, { 5, 6 },
-  { 7, 6 }, { 4, 7 }, { 0, 4 }, { 1, 5 }, { 3, 7 }, { 2, 6 } };
+using pisurf::mc::Corner;
+using pisurf::mc::Edge;
 
 // A view as vtkPiRayCaster describes it in `PiRayViews`.
 struct View
