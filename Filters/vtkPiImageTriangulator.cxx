@@ -728,13 +728,19 @@ void Triangulation::RunBestView(double sheetTolerance)
     }
   });
 
-  auto facing = [&](vtkIdType id) {
-    const View& v = this->Views[C.ViewOf[id]];
-    double o[3], d[3];
-    v.Ray(C.Pixel[2 * id], C.Pixel[2 * id + 1], o, d);
-    const double c = C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2];
-    return c;
-  };
+  // n·d of every hit with its own ray, once (the links ask for it many times).
+  std::vector<double> facingOf(C.N);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      const View& v = this->Views[C.ViewOf[id]];
+      double o[3], d[3];
+      v.Ray(C.Pixel[2 * id], C.Pixel[2 * id + 1], o, d);
+      facingOf[id] =
+        C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2];
+    }
+  });
+  auto facing = [&](vtkIdType id) { return facingOf[id]; };
 
   // PASS 1: ownership. A hit belongs to the view that sees it best: the largest |n·d|
   // among the views whose ray through it reaches it first (within a footprint).

@@ -85,7 +85,6 @@ bool Clip(const double o[3], const double d[3], const double b[6], double& t0, d
 // The roots of F along one ray segment, overflow-safe and certified for polynomials.
 struct CastRows
 {
-  const pisurf::ProductKernel* Kernel;
   const std::vector<View>* Views;
   const double* Bounds;
   bool AllHits;
@@ -394,7 +393,7 @@ int vtkPiRayCaster::RequestData(
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
   const pisurf::RayCaster caster(*kernel);
-  CastRows cast{ kernel.get(), &views, b, allHits, 1e-10 * size, &rows, &caster, this, &abort };
+  CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, this, &abort };
   vtkSMPTools::For(0, rowCount, cast);
   if (abort || this->CheckAbort())
   {
