@@ -111,6 +111,10 @@ struct Evaluator
   {
     return this->Field ? this->Field->EvaluateCompressed(p) : this->Kernel->EvaluateCompressed(p);
   }
+  bool OffOuterSide(const double p[3]) const
+  {
+    return this->Field && this->Field->OffOuterSide(p);
+  }
   void EvaluateVertex(const double p[3], double n[3], double& gradientNorm, int& nearest) const
   {
     if (this->Field)
@@ -346,7 +350,10 @@ class Envelope
 public:
   // `buffer` holds the per-point states; it is kept between executions (no clearing
   // needed: every entry is written here).
-  Envelope(const Grid& g, int outside, std::vector<signed char>& buffer)
+  // `field` (may be null) marks points of bounded positive components, which the flood
+  // fill does not pass (see pisurf::Field::OffOuterSide).
+  Envelope(const Grid& g, int outside, std::vector<signed char>& buffer,
+    const pisurf::Field* field = nullptr)
     : G(g)
     , Outside(outside)
     , BlockReached(g.Sign.size(), 0)
@@ -359,6 +366,34 @@ public:
     // skipped blocks are written after active ones so that their marks win.
     signed char* state = this->State;
     const Grid* grid = &this->G;
+    // Skipped blocks of the outside sign in a bounded component: F keeps its sign over
+    // the block, so the whole block is in the component of its centre. Flagged 2 in
+    // BlockReached (never queued) and their points written as the other sign.
+    char* blockFlag = this->BlockReached.data();
+    if (field && outside > 0)
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType b = begin; b < end; ++b)
+        {
+          if (grid->Sign[b] != 1)
+          {
+            continue;
+          }
+          int c[3];
+          grid->BlockCoordinates(b, c);
+          double centre[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            centre[a] = grid->Origin[a] +
+              0.5 * (grid->First(c, a) + grid->Last(c, a)) * grid->Spacing[a];
+          }
+          if (field->OffOuterSide(centre))
+          {
+            blockFlag[b] = 2;
+          }
+        }
+      });
+    }
     for (int pass = 0; pass < 2; ++pass)
     {
       vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
@@ -380,7 +415,8 @@ public:
               signed char* row = state + grid->PointId(0, j, k);
               if (skipped)
               {
-                std::memset(row + grid->First(c, 0), grid->Sign[b] > 0 ? 1 : -1,
+                std::memset(row + grid->First(c, 0),
+                  grid->Sign[b] > 0 && blockFlag[b] != 2 ? 1 : -1,
                   grid->Last(c, 0) - grid->First(c, 0) + 1);
                 continue;
               }
@@ -390,6 +426,18 @@ public:
               for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
               {
                 row[i] = vr[i] >= 0 ? 2 : -2;
+              }
+              if (field && outside > 0)
+              {
+                for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
+                {
+                  const double p[3] = { grid->Origin[0] + i * grid->Spacing[0],
+                    grid->Origin[1] + j * grid->Spacing[1], grid->Origin[2] + k * grid->Spacing[2] };
+                  if (row[i] == 2 && field->OffOuterSide(p))
+                  {
+                    row[i] = -2; // positive, but never on the outer side
+                  }
+                }
               }
             }
         }
@@ -466,7 +514,7 @@ public:
     vtkSMPTools::For(0, static_cast<vtkIdType>(grid->Sign.size()), [=](vtkIdType begin, vtkIdType end) {
       for (vtkIdType b = begin; b < end; ++b)
       {
-        if (!blockReached[b])
+        if (blockReached[b] != 1)
         {
           continue;
         }
@@ -481,6 +529,8 @@ public:
       }
     });
   }
+
+  int GetOutside() const { return this->Outside; }
 
   /// The sign the contouring sees: the outside sign where connected to the boundary,
   /// the other sign everywhere else.
@@ -696,7 +746,13 @@ struct Contour
                   this->EdgeKey[vertex] = Key(axis, i - f[0], j - f[1], k - f[2]);
                   (*this->VertexEdge)[vertex] = this->G->PointId(i, j, k) * 3 + axis;
                   const double v0 = v[q0], v1 = v[q1];
-                  const double t = v0 == v1 ? 0.5 : v0 / (v0 - v1);
+                  const bool own0 = (v0 >= 0) == (sign[q0] > 0);
+                  const bool own1 = (v1 >= 0) == (sign[q1] > 0);
+                  // Both ends of one sign (the envelope gave one the other sign): start
+                  // at the end whose sign is its own; Refine looks for the surface
+                  // nearest to it along the edge.
+                  const double t = !(own0 && own1) ? (own0 ? 0.0 : 1.0)
+                                                  : (v0 == v1 ? 0.5 : v0 / (v0 - v1));
                   (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
                   (*this->VertexEnds)[2 * vertex] = v0;
                   (*this->VertexEnds)[2 * vertex + 1] = v1;
@@ -782,6 +838,7 @@ struct VertexAttributes
   vtkDoubleArray* GradientMagnitude; // may be null
   bool Project;
   double Tolerance; // stop when the bracket is shorter than this
+  bool PositiveEnvelope; // the outer envelope is on and its outside sign is +
 
   double Refine(const double a[3], const double b[3], double t, double va, double vb) const
   {
@@ -798,20 +855,121 @@ struct VertexAttributes
       va = phi(a);
       vb = phi(b);
     }
+    auto along = [&](double s) {
+      const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
+        a[2] + s * (b[2] - a[2]) };
+      return phi(q);
+    };
+    const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
+    // The first sign change stepping from the end `from` (0 or 1) towards the other:
+    // the surface nearest that end; `from` itself if F keeps its sign at every step.
+    auto firstCrossing = [&](double from) {
+      constexpr int Steps = 16;
+      double s0 = from, f0 = from == 0.0 ? va : vb;
+      for (int m = 1; m <= Steps; ++m)
+      {
+        const double s1 = from == 0.0 ? double(m) / Steps : 1.0 - double(m) / Steps;
+        const double f1 = m == Steps ? (from == 0.0 ? vb : va) : along(s1);
+        if (f1 == 0.0)
+        {
+          return s1;
+        }
+        if ((f0 > 0) != (f1 > 0))
+        {
+          const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+          const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
+          return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
+            1e-12 * std::max(std::fabs(flo), std::fabs(fhi)));
+        }
+        s0 = s1;
+        f0 = f1;
+      }
+      return from;
+    };
+    auto offOuterSide = [&](double s) {
+      const double x[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
+        a[2] + s * (b[2] - a[2]) };
+      return this->Kernel->OffOuterSide(x);
+    };
+    // From the positive end `from` (on the outer side) to `to` (off it): where the edge
+    // leaves the outer side, found by bisection; if F is negative just before it (the
+    // thin wall), the root in between is on the outer sheet. -1 if not.
+    auto outerCrossing = [&](double from, double to) {
+      double out = from, off = to;
+      for (int m = 0; m < 64 && std::fabs(off - out) * length > this->Tolerance; ++m)
+      {
+        const double mid = 0.5 * (out + off);
+        (offOuterSide(mid) ? off : out) = mid;
+      }
+      const double fOut = along(out), fFrom = from == 0.0 ? va : vb;
+      if (!(fFrom > 0))
+      {
+        return -1.0;
+      }
+      // The root is before `out`, or (F huge: the surface hugs the wall) within the
+      // tolerance after it.
+      double s0 = from, f0 = fFrom, s1 = out, f1 = fOut;
+      if (!(fOut < 0))
+      {
+        s0 = out;
+        f0 = fOut;
+        s1 = off;
+        f1 = along(off);
+        if (!(f1 < 0))
+        {
+          return out;
+        }
+      }
+      const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+      const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
+      return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
+        1e-12 * std::max(std::fabs(flo), std::fabs(fhi)));
+    };
+    if ((va > 0 && vb > 0) || (va < 0 && vb < 0))
+    {
+      // Ends of one sign: the edge enters a thin wall the grid does not resolve (the
+      // envelope gave the far end the other sign, see the Edges pass, and t is the end
+      // whose sign is its own): the surface nearest to that end.
+      if (t != 0.0 && t != 1.0)
+      {
+        return t;
+      }
+      const double crossing = firstCrossing(t);
+      if (this->PositiveEnvelope && va > 0 && (crossing == t || offOuterSide(crossing)) &&
+        offOuterSide(1.0 - t))
+      {
+        const double outer = outerCrossing(t, 1.0 - t);
+        return outer >= 0 ? outer : crossing;
+      }
+      return crossing;
+    }
     if (!(va < 0 && vb > 0) && !(va > 0 && vb < 0))
     {
       return t; // no strict bracket (an end exactly on F = 0): keep the interpolation
     }
     // |F| below 1e-12 of its values at the ends: the root is within ~1e-12 of an edge.
     const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
-    const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
-    return pisurf::BracketedRoot(
-      [&](double s) {
-        const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
-          a[2] + s * (b[2] - a[2]) };
-        return phi(q);
-      },
-      0.0, 1.0, va, vb, this->Tolerance / length, small);
+    const double root =
+      pisurf::BracketedRoot(along, 0.0, 1.0, va, vb, this->Tolerance / length, small);
+    if (this->PositiveEnvelope)
+    {
+      const double x[3] = { a[0] + root * (b[0] - a[0]), a[1] + root * (b[1] - a[1]),
+        a[2] + root * (b[2] - a[2]) };
+      if (this->Kernel->OffOuterSide(x))
+      {
+        // A root of a bounded component's sheet (the edge runs outside, wall, lens,
+        // wall): the outer sheet is the crossing nearest the positive end.
+        const double from = va > 0 ? 0.0 : 1.0;
+        const double crossing = firstCrossing(from);
+        if (crossing != from && !offOuterSide(crossing))
+        {
+          return crossing;
+        }
+        const double outer = outerCrossing(from, root);
+        return outer >= 0 ? outer : root;
+      }
+    }
+    return root;
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
@@ -1132,7 +1290,8 @@ int vtkPiFlyingEdges::RequestData(
             ++total;
           }
     }
-    envelope.reset(new Envelope(g, 2 * positive >= total ? 1 : -1, this->Internals->State));
+    envelope.reset(
+      new Envelope(g, 2 * positive >= total ? 1 : -1, this->Internals->State, field.get()));
     envelope->Flood();
   }
   if (this->CheckAbort())
@@ -1244,7 +1403,8 @@ int vtkPiFlyingEdges::RequestData(
     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   VertexAttributes attributes{ &evaluator, &g, &vertexEdge, &vertexT, &vertexEnds, points,
     normals, factor,
-    gradientMagnitude, this->ProjectVertices, 1e-13 * size };
+    gradientMagnitude, this->ProjectVertices, 1e-13 * size,
+    envelope && envelope->GetOutside() > 0 };
   vtkSMPTools::For(0, vertices, attributes);
   lap("vertices");
 

@@ -6,12 +6,8 @@
 #include "vtkPiFlyingEdges.h"
 
 #include "vtkCallbackCommand.h"
-#include "vtkCleanPolyData.h"
 #include "vtkCommand.h"
-#include "vtkIdList.h"
 #include "vtkMath.h"
-#include "vtkPolyDataConnectivityFilter.h"
-#include "vtkStaticPointLocator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -231,10 +227,8 @@ int vtkPiMoleculeSurface::RequestData(
   // every atom's influence, so R + InfluenceRadius always suffices.
   double atomBox[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  double maxRadius = 0.0;
   for (vtkIdType i = 0; i < count; ++i)
   {
-    maxRadius = std::max(maxRadius, radii[i]);
     for (int a = 0; a < 3; ++a)
     {
       atomBox[2 * a] = std::min(atomBox[2 * a], centers[3 * i + a] - radii[i]);
@@ -344,75 +338,8 @@ int vtkPiMoleculeSurface::RequestData(
     vtkWarningMacro(<< messages.Warning);
   }
   output->ShallowCopy(mesher->GetOutput());
-  if (this->OuterEnvelope && output->GetNumberOfPoints() > 0)
-  {
-    // PASS 4b: at small r the F < 0 layer between the outside and a lens (where two
-    // atoms overlap, the product of two negative factors is positive) is thinner than
-    // the grid, so the envelope's flood fill leaks into the lens and keeps its sheet.
-    // Such a sheet lies inside the molecule: drop every connected component whose
-    // vertices are mostly inside an atom other than their nearest one.
-    vtkNew<vtkPolyDataConnectivityFilter> connectivity;
-    vtkNew<vtkPolyData> mesh;
-    mesh->ShallowCopy(output);
-    connectivity->SetInputData(mesh);
-    connectivity->SetExtractionModeToAllRegions();
-    connectivity->ColorRegionsOn();
-    connectivity->Update();
-    const int regions = connectivity->GetNumberOfExtractedRegions();
-    vtkPolyData* colored = connectivity->GetOutput();
-    vtkDataArray* regionId = colored->GetPointData()->GetArray("RegionId");
-    if (regions > 1 && regionId)
-    {
-      vtkNew<vtkStaticPointLocator> locator;
-      vtkNew<vtkPolyData> atomSet;
-      atomSet->SetPoints(atoms);
-      locator->SetDataSet(atomSet);
-      locator->BuildLocator();
-      std::vector<vtkIdType> inside(regions, 0), total(regions, 0);
-      vtkNew<vtkIdList> nearby;
-      for (vtkIdType v = 0; v < colored->GetNumberOfPoints(); ++v)
-      {
-        double x[3];
-        colored->GetPoint(v, x);
-        const int region = static_cast<int>(regionId->GetComponent(v, 0));
-        locator->FindPointsWithinRadius(maxRadius, x, nearby);
-        // Inside an atom by more than 1% of its radius: not on its own sphere's patch.
-        bool in = false;
-        for (vtkIdType k = 0; k < nearby->GetNumberOfIds() && !in; ++k)
-        {
-          const vtkIdType a = nearby->GetId(k);
-          const double R = 0.99 * radii[a];
-          in = vtkMath::Distance2BetweenPoints(x, &centers[3 * a]) < R * R;
-        }
-        inside[region] += in;
-        ++total[region];
-      }
-      vtkNew<vtkIdList> keep;
-      for (int region = 0; region < regions; ++region)
-      {
-        if (2 * inside[region] <= total[region])
-        {
-          keep->InsertNextId(region);
-        }
-      }
-      if (keep->GetNumberOfIds() < regions && keep->GetNumberOfIds() > 0)
-      {
-        vtkNew<vtkPolyDataConnectivityFilter> extract;
-        extract->SetInputData(mesh);
-        extract->SetExtractionModeToSpecifiedRegions();
-        for (vtkIdType k = 0; k < keep->GetNumberOfIds(); ++k)
-        {
-          extract->AddSpecifiedRegion(static_cast<int>(keep->GetId(k)));
-        }
-        extract->Update();
-        vtkNew<vtkCleanPolyData> clean; // drop the removed sheets' points
-        clean->SetInputConnection(extract->GetOutputPort());
-        clean->PointMergingOff();
-        clean->Update();
-        output->ShallowCopy(clean->GetOutput());
-      }
-    }
-  }
+  // (Lens-shaped shells where atoms overlap are bounded components of {F > 0}: the
+  // envelope never enters them, see pisurf::MoleculeField::OffOuterSide.)
 
   // PASS 5: attributes.
   vtkIntArray* factor = vtkIntArray::SafeDownCast(output->GetPointData()->GetArray("Factor"));

@@ -36,6 +36,17 @@ public:
   /// factor (for a molecule: the atom) whose zero set is nearest.
   virtual void EvaluateVertex(
     const double p[3], double normal[3], double& gradientNorm, int& nearest) const = 0;
+  /// True only where p provably lies off the closure of the outer (unbounded) component
+  /// of {F > 0}: in a bounded component of {F > 0}, or on its boundary. The outer
+  /// envelope's flood fill does not pass such points, and a vertex root-found there is
+  /// moved to the surface nearest the outside, so a grid too coarse to resolve the thin
+  /// wall around such a component (the lens where two atom spheres overlap, at small r)
+  /// cannot leak into it. The default knows nothing and says false.
+  virtual bool OffOuterSide(const double p[3]) const
+  {
+    (void)p;
+    return false;
+  }
 };
 }
 

@@ -519,6 +519,41 @@ double MoleculeField::EvaluateCompressed(const double p[3]) const
   return std::copysign(magnitude, F);
 }
 
+bool MoleculeField::OffOuterSide(const double p[3]) const
+{
+  if (!(this->Level > 0))
+  {
+    return false; // F = −level >= 0 on the spheres: the argument does not hold
+  }
+  const Cell* cell = this->CellAt(p);
+  const size_t n = this->Radii.size();
+  auto inside = [&](size_t i) {
+    const double* c = &this->Centers[3 * i];
+    const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+    return dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i];
+  };
+  if (cell)
+  {
+    // Every atom whose sphere contains p is near p's cell.
+    for (int i : cell->Near)
+    {
+      if (inside(static_cast<size_t>(i)))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  for (size_t i = 0; i < n; ++i)
+  {
+    if (inside(i))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void MoleculeField::EvaluateVertex(
   const double p[3], double normal[3], double& gradientNorm, int& nearest) const
 {

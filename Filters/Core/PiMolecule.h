@@ -94,6 +94,12 @@ public:
   double EvaluateCompressed(const double p[3]) const override;
   void EvaluateVertex(
     const double p[3], double normal[3], double& gradientNorm, int& nearest) const override;
+  /// True inside any atom sphere (|p − c_i| < R_i), when the level is positive. On
+  /// every sphere one factor vanishes (g_i = f_i there, in Local mode too), so P = 0 and
+  /// F = −level < 0: no component of {F > 0} crosses a sphere. The outer one contains
+  /// the far field, outside every sphere, so it and its closure (where P >= level > 0)
+  /// stay outside every closed sphere.
+  bool OffOuterSide(const double p[3]) const override;
 
   /// ln|P(p)| over all atoms without any approximation, and the sign of P (−1, 0, 1).
   /// Cost O(atoms): for tests and reference values.
