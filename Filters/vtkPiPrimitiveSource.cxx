@@ -22,8 +22,16 @@ vtkStandardNewMacro(vtkPiPrimitiveSource);
 
 vtkPiPrimitiveSource::vtkPiPrimitiveSource()
   : Primitive(vtkPiPrimitive::New())
+  , Surface(vtkPiSurface::New())
+  , Mesher(vtkPiFlyingEdges::New())
 {
   this->SetNumberOfInputPorts(0);
+  this->Surface->AddFactor(this->Primitive);
+  this->Mesher->SetPiSurface(this->Surface);
+  this->Mesher->SetOuterEnvelope(false); // every sheet of the primitive (hyperboloid2 has two)
+  this->Mesher->SetProjectVertices(true);
+  this->Mesher->SetGeneratePrimitives(false);
+  this->Mesher->SetContainerAlgorithm(this);
   // The primitive reports invalid parameters itself when it is built; this source
   // reports them (once, naming itself) in RequestData instead.
   vtkNew<vtkCallbackCommand> quiet;
@@ -32,6 +40,8 @@ vtkPiPrimitiveSource::vtkPiPrimitiveSource()
 
 vtkPiPrimitiveSource::~vtkPiPrimitiveSource()
 {
+  this->Mesher->Delete();
+  this->Surface->Delete();
   this->Primitive->Delete();
 }
 
@@ -278,23 +288,19 @@ int vtkPiPrimitiveSource::RequestData(
     vtkErrorMacro(<< error);
     return 1; // an empty output, not a pipeline failure: downstream sees "no model"
   }
-  vtkNew<vtkPiSurface> surface;
-  surface->AddFactor(this->Primitive);
-  if (!this->Primitive->IsBounded())
+  if (this->Primitive->IsBounded())
+  {
+    this->Surface->ClearModelBounds();
+  }
+  else
   {
     // The model in the field data must say where an unbounded primitive is looked at.
-    surface->SetModelBounds(bounds);
+    this->Surface->SetModelBounds(bounds);
   }
-  vtkNew<vtkPiFlyingEdges> mesher;
-  mesher->SetPiSurface(surface);
-  mesher->SetBounds(bounds);
-  mesher->SetResolution(this->Resolution);
-  mesher->SetOuterEnvelope(false); // every sheet of the primitive (hyperboloid2 has two)
-  mesher->SetProjectVertices(true);
-  mesher->SetGeneratePrimitives(false);
-  mesher->SetContainerAlgorithm(this);
-  mesher->UpdatePiece(piece, pieces, 0);
-  output->ShallowCopy(mesher->GetOutput());
+  this->Mesher->SetBounds(bounds);
+  this->Mesher->SetResolution(this->Resolution);
+  this->Mesher->UpdatePiece(piece, pieces, 0);
+  output->ShallowCopy(this->Mesher->GetOutput());
   return 1;
 }
 

@@ -34,7 +34,9 @@
 
 #include <string> // for std::string
 
+class vtkPiFlyingEdges;
 class vtkPiPrimitive;
+class vtkPiSurface;
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiPrimitiveSource : public vtkPolyDataAlgorithm
 {
@@ -120,6 +122,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkPiPrimitive* Primitive;
+  // The primitive alone as a Pi-surface and its mesher, kept between executions so
+  // that re-meshing after an edit reuses the mesher's buffers.
+  vtkPiSurface* Surface;
+  vtkPiFlyingEdges* Mesher;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   int Resolution = 64;
 
