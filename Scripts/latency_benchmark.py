@@ -8,7 +8,8 @@ the rounded cube x^6+y^6+z^6-1 with a negative sphere (radius sqrt(0.05), r = 0.
 moving into its +x face. Each move sets the moving primitive's Center and times
 UpdatePipeline() of the product: the moved primitive re-meshes itself (Resolution 64)
 and the product re-meshes at RESOLUTION (default 96) cells along its longest side.
-Both vtkSMPTools backends; the median and the worst of MOVES moves (default 20)."""
+Both vtkSMPTools backends; the best, the median and the worst of MOVES moves (default
+20): on a shared machine the best is the closest to the unloaded cost."""
 import json
 import os
 import statistics
@@ -61,19 +62,19 @@ def measure(scene):
     Delete(product)
     for s in sources:
         Delete(s)
-    return statistics.median(times), max(times), cells
+    return min(times), statistics.median(times), max(times), cells
 
 
 print("Pi Product latency: property change -> new mesh (UpdatePipeline), Resolution %d, "
       "%d moves" % (resolution, moves))
-print("| scene | backend | median | worst | triangles | goal 50 ms |")
-print("|---|---|---|---|---|---|")
+print("| scene | backend | best | median | worst | triangles | median within 50 ms |")
+print("|---|---|---|---|---|---|---|")
 for backend in ("Sequential", "STDThread"):
     vtkSMPTools.SetBackend(backend)
     for name, scene in (("cup, moving handle", cup_scene),
                         ("rounded cube, moving negative sphere", cube_scene)):
-        median, worst, cells = measure(scene)
-        print("| %s | %s | %.1f ms | %.1f ms | %d | %s |" % (
-            name, vtkSMPTools.GetBackend(), 1e3 * median, 1e3 * worst, cells,
-            "met" if median <= 0.050 else "not met"))
+        best, median, worst, cells = measure(scene)
+        print("| %s | %s | %.1f ms | %.1f ms | %.1f ms | %d | %s |" % (
+            name, vtkSMPTools.GetBackend(), 1e3 * best, 1e3 * median, 1e3 * worst, cells,
+            "yes" if median <= 0.050 else "no"))
         sys.stdout.flush()
