@@ -3,7 +3,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -439,5 +442,144 @@ std::string WriteModel(const Model& m)
   }
   j["primitives"] = prims;
   return j.dump(2) + "\n";
+}
+
+std::string RenameParameter(
+  const std::string& expression, const std::string& from, const std::string& to)
+{
+  auto isNameStart = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  auto isNameChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::string out;
+  size_t i = 0;
+  while (i < expression.size())
+  {
+    const char c = expression[i];
+    // Numbers first, so that the exponent of 2e5 is not read as a name.
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.')
+    {
+      size_t j = i;
+      while (j < expression.size() &&
+        (std::isdigit(static_cast<unsigned char>(expression[j])) || expression[j] == '.'))
+        ++j;
+      if (j < expression.size() && (expression[j] == 'e' || expression[j] == 'E'))
+      {
+        size_t k = j + 1;
+        if (k < expression.size() && (expression[k] == '+' || expression[k] == '-'))
+          ++k;
+        if (k < expression.size() && std::isdigit(static_cast<unsigned char>(expression[k])))
+        {
+          j = k;
+          while (j < expression.size() && std::isdigit(static_cast<unsigned char>(expression[j])))
+            ++j;
+        }
+      }
+      out.append(expression, i, j - i);
+      i = j;
+    }
+    else if (isNameStart(c))
+    {
+      size_t j = i;
+      while (j < expression.size() && isNameChar(expression[j]))
+        ++j;
+      const std::string name = expression.substr(i, j - i);
+      out += name == from ? to : name;
+      i = j;
+    }
+    else
+    {
+      out += c;
+      ++i;
+    }
+  }
+  return out;
+}
+
+bool MultiplyModels(
+  const std::vector<Model>& models, double blending, Model& product, std::string& error)
+{
+  if (models.empty())
+  {
+    error = "the product has no factors: give it at least one input with a model";
+    return false;
+  }
+  if (!std::isfinite(blending))
+  {
+    error = "the blending r must be a finite number";
+    return false;
+  }
+  Model m;
+  m.Blending = blending;
+  bool anyUnbounded = false;
+  for (size_t i = 0; i < models.size(); ++i)
+  {
+    const Model& in = models[i];
+    if (in.Primitives.empty())
+    {
+      error = "model " + std::to_string(i + 1) + " has no primitives";
+      return false;
+    }
+    // Renames of this model's parameters that clash with earlier ones.
+    std::map<std::string, std::string> renamed;
+    for (const auto& kv : in.Parameters)
+    {
+      auto it = m.Parameters.find(kv.first);
+      if (it == m.Parameters.end())
+      {
+        m.Parameters[kv.first] = kv.second;
+        continue;
+      }
+      if (it->second == kv.second)
+        continue;
+      std::string name;
+      for (int n = 2;; ++n)
+      {
+        name = kv.first + "_" + std::to_string(n);
+        if (!m.Parameters.count(name) && !in.Parameters.count(name))
+          break;
+      }
+      m.Parameters[name] = kv.second;
+      renamed[kv.first] = name;
+    }
+    bool unbounded = false;
+    for (PrimitiveSpec s : in.Primitives)
+    {
+      for (const auto& r : renamed)
+        s.Expression = RenameParameter(s.Expression, r.first, r.second);
+      PolynomialFactor f;
+      std::string why;
+      if (!BuildFactor(s, m.Parameters, f, why))
+      {
+        error = "model " + std::to_string(i + 1) + ", primitive " +
+          (s.Name.empty() ? std::to_string(m.Primitives.size() + 1) : "'" + s.Name + "'") +
+          ": " + why;
+        return false;
+      }
+      unbounded = unbounded || !f.Bounded;
+      m.Primitives.push_back(std::move(s));
+    }
+    if (unbounded)
+    {
+      if (!in.HasBounds)
+      {
+        error = "model " + std::to_string(i + 1) + " has an unbounded primitive but no bounds";
+        return false;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        m.Bounds[2 * a] = anyUnbounded ? std::min(m.Bounds[2 * a], in.Bounds[2 * a]) : in.Bounds[2 * a];
+        m.Bounds[2 * a + 1] =
+          anyUnbounded ? std::max(m.Bounds[2 * a + 1], in.Bounds[2 * a + 1]) : in.Bounds[2 * a + 1];
+      }
+      anyUnbounded = true;
+    }
+  }
+  m.HasBounds = anyUnbounded;
+  if (m.Primitives.size() > MaxPrimitives)
+  {
+    error = "more than " + std::to_string(MaxPrimitives) + " primitives";
+    return false;
+  }
+  product = std::move(m);
+  return true;
 }
 }

@@ -44,6 +44,21 @@ bool ParseModel(const std::string& text, Model& model, std::string& error);
 std::string WriteModel(const Model& model);
 /// Checks bounds: six finite numbers with x0 < x1, y0 < y1, z0 < z1.
 bool ValidBounds(const double b[6]);
+
+/// The product of several models (the ParaView "Pi Product"): their primitives in
+/// order, the one blending r given, the parameters merged. A parameter name that a later
+/// model gives another value is renamed in that model's expressions (a -> a_2, a_3 ...),
+/// so every primitive keeps its own function. Bounds: the union of the bounds of the
+/// models that have an unbounded primitive (those need them); none when every primitive
+/// is bounded, so the product's automatic bounds grow with r. False with a reason for
+/// an empty list, a model without primitives, or a product that does not validate.
+bool MultiplyModels(
+  const std::vector<Model>& models, double blending, Model& product, std::string& error);
+
+/// `expression` with the parameter `from` renamed `to` (whole names only: renaming a
+/// leaves ab and a2 alone).
+std::string RenameParameter(
+  const std::string& expression, const std::string& from, const std::string& to);
 }
 
 #endif
