@@ -208,6 +208,7 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   for (size_t i = 0; i < this->Radii.size(); ++i)
   {
     this->MaxReach = std::max(this->MaxReach, this->Reach(i));
+    this->MaxRadius = std::max(this->MaxRadius, this->Radii[i]);
     for (int a = 0; a < 3; ++a)
     {
       box[2 * a] = std::min(box[2 * a], this->Centers[3 * i + a] - this->Reach(i));
@@ -247,6 +248,20 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   }
   this->Cells.resize(count);
   this->Once.reset(new std::once_flag[count]);
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    const size_t n = this->Radii.size();
+    this->R2.resize(n);
+    this->Rho2.resize(n);
+    this->InvSpan.resize(n);
+    for (size_t i = 0; i < n; ++i)
+    {
+      const double rho = this->Radii[i] + this->Settings.InfluenceRadius;
+      this->R2[i] = this->Radii[i] * this->Radii[i];
+      this->Rho2[i] = rho * rho;
+      this->InvSpan[i] = 1.0 / (this->Rho2[i] - this->R2[i]);
+    }
+  }
 }
 
 MoleculeField::~MoleculeField() = default;
@@ -438,9 +453,46 @@ double MoleculeField::ComputeExact(const double p[3], double& logAbsF) const
   return Finish(s, this->Level, logAbsF);
 }
 
+double MoleculeField::ComputeLocal(const Cell* cell, const double p[3]) const
+{
+  if (!cell)
+  {
+    return 1.0 - this->Level; // beyond every atom's influence: the product is 1
+  }
+  // The same arithmetic as AtomFactor, in the same (sorted) atom order.
+  const double* centers = this->Centers.data();
+  double product = 1.0;
+  for (int i : cell->Near)
+  {
+    const double* c = centers + 3 * i;
+    const double v0 = p[0] - c[0], v1 = p[1] - c[1], v2 = p[2] - c[2];
+    const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
+    if (d2 >= this->Rho2[i])
+    {
+      continue; // g = 1
+    }
+    const double f = d2 - this->R2[i];
+    if (f <= 0.0)
+    {
+      product *= f; // w = 1: g = f
+      continue;
+    }
+    const double u = f * this->InvSpan[i];
+    const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+    product *= 1.0 + (f - 1.0) * w;
+  }
+  return product - this->Level;
+}
+
 double MoleculeField::Compute(const double p[3], double& logAbsF) const
 {
   const Cell* cell = this->CellAt(p);
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    const double F = this->ComputeLocal(cell, p);
+    logAbsF = F == 0.0 ? -HUGE_VAL : std::log(std::fabs(F));
+    return F;
+  }
   if (!cell)
   {
     if (this->Settings.Mode == MoleculeMode::Local)
@@ -503,6 +555,10 @@ double MoleculeField::Compute(const double p[3], double& logAbsF) const
 
 double MoleculeField::Evaluate(const double p[3]) const
 {
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    return this->ComputeLocal(this->CellAt(p), p);
+  }
   double logAbsF;
   return this->Compute(p, logAbsF);
 }
@@ -525,32 +581,38 @@ bool MoleculeField::OffOuterSide(const double p[3]) const
   {
     return false; // F = −level >= 0 on the spheres: the argument does not hold
   }
-  const Cell* cell = this->CellAt(p);
-  const size_t n = this->Radii.size();
-  auto inside = [&](size_t i) {
-    const double* c = &this->Centers[3 * i];
-    const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
-    return dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i];
-  };
-  if (cell)
+  // The atoms binned by centre within the largest radius of p (no cell is built: in
+  // Global mode that costs a pass over all atoms).
+  const double s = this->Settings.CellSize;
+  const double maxRadius = this->MaxRadius;
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
   {
-    // Every atom whose sphere contains p is near p's cell.
-    for (int i : cell->Near)
+    const double t0 = std::floor((p[a] - maxRadius - this->Origin[a]) / s);
+    const double t1 = std::floor((p[a] + maxRadius - this->Origin[a]) / s);
+    if (!(t1 >= 0 && t0 < this->Dims[a]))
     {
-      if (inside(static_cast<size_t>(i)))
+      return false; // beyond every atom
+    }
+    lo[a] = static_cast<int>(std::max(0.0, t0));
+    hi[a] = static_cast<int>(std::min<double>(this->Dims[a] - 1, t1));
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
       {
-        return true;
+        const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
+        for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
+        {
+          const int i = this->BinAtoms[k];
+          const double* c = &this->Centers[3 * i];
+          const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+          if (dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i])
+          {
+            return true;
+          }
+        }
       }
-    }
-    return false;
-  }
-  for (size_t i = 0; i < n; ++i)
-  {
-    if (inside(i))
-    {
-      return true;
-    }
-  }
   return false;
 }
 
@@ -558,6 +620,47 @@ void MoleculeField::EvaluateVertex(
   const double p[3], double normal[3], double& gradientNorm, int& nearest) const
 {
   const Cell* cell = this->CellAt(p);
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    // Plain doubles (see ComputeLocal); only atoms within their ρ change the product,
+    // and the nearest sphere is among them (F = 0 needs some g_i != 1, and an atom
+    // beyond ρ is farther than InfluenceRadius from its sphere).
+    double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
+    nearest = -1;
+    if (cell)
+    {
+      for (int i : cell->Near)
+      {
+        const double* c = &this->Centers[3 * i];
+        const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+        const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if (d2 >= this->Rho2[i])
+        {
+          continue;
+        }
+        double g[3];
+        const double f = this->AtomFactor(i, p, g);
+        for (int k = 0; k < 3; ++k)
+        {
+          grad[k] = grad[k] * f + product * g[k];
+        }
+        product *= f;
+        const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
+        if (distance < best)
+        {
+          best = distance;
+          nearest = i;
+        }
+      }
+    }
+    const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
+    gradientNorm = std::isfinite(norm) ? norm : 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      normal[k] = norm > 0 && std::isfinite(norm) ? grad[k] / norm : 0.0;
+    }
+    return;
+  }
   std::vector<int> all;
   const std::vector<int>* atoms = nullptr;
   if (cell)

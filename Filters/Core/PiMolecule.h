@@ -129,13 +129,19 @@ private:
   double Reach(size_t i) const;
   // F(p) and ln|F| (for the compressed form).
   double Compute(const double p[3], double& logAbsF) const;
+  // Local mode: F from the cell's atoms in plain doubles (|g_i| <= max(R_i², 1) and only
+  // the few atoms whose sphere holds p are negative: no overflow), no logarithm.
+  double ComputeLocal(const Cell* cell, const double p[3]) const;
   double ComputeExact(const double p[3], double& logAbsF) const;
 
   std::vector<double> Centers;
   std::vector<double> Radii;
+  // Local: per atom R², ρ² and 1/(ρ² − R²).
+  std::vector<double> R2, Rho2, InvSpan;
   MoleculeSettings Settings;
   double Level;
   double MaxReach = 0.0;
+  double MaxRadius = 0.0;
   double Origin[3];
   int Dims[3];
   std::vector<int> BinStart, BinAtoms; // atoms by cell (CSR)
