@@ -18,6 +18,8 @@ from vtkmodules.vtkImagingHybrid import vtkGaussianSplatter, vtkCheckerboardSpla
 from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
 
 DATA = '/usr/share/freesasa/test-data/'
+# exp(-5 d^2 / 3.5^2) = 0.3 at d = 1.72 A: a lone atom gets about a carbon's vdW radius.
+LEVEL = 0.3
 
 
 def read(name):
@@ -88,12 +90,12 @@ def splat(molecule, spacing, kind):
     s.NormalWarpingOff()
     if kind != 'gaussian':
         s.SetFootprint(int(math.ceil(3.5 / spacing)))
-        s.CappingOff()
-    else:
-        s.CappingOff()
+    s.CappingOff()
+    if kind == 'gaussian':
+        s.SetAccumulationModeToSum()  # Blinn: the sum of the Gaussians
     fe = vtkFlyingEdges3D()
     fe.SetInputConnection(s.GetOutputPort())
-    fe.SetValue(0, 0.5)
+    fe.SetValue(0, LEVEL)
     fe.ComputeNormalsOn()
     t = time.perf_counter()
     fe.Update()
