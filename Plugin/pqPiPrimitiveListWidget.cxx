@@ -382,7 +382,6 @@ public:
       else
         this->Table->clearSelection();
     }
-    this->Table->resizeColumnToContents(0);
     this->Remove->setEnabled(this->Row >= 0);
     this->Duplicate->setEnabled(this->Row >= 0);
     this->Up->setEnabled(this->Row > 0);
@@ -511,6 +510,7 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
   internals.Table->setObjectName("PiPrimitiveTable");
   internals.Table->setHorizontalHeaderLabels({ tr("Type"), tr("Primitive") });
   internals.Table->horizontalHeader()->setStretchLastSection(true);
+  internals.Table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
   internals.Table->setSelectionBehavior(QAbstractItemView::SelectRows);
   internals.Table->setSelectionMode(QAbstractItemView::SingleSelection);
   internals.Table->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -520,21 +520,27 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
   QObject::connect(internals.Table, &QTableWidget::itemSelectionChanged, this,
     &pqPiPrimitiveListWidget::onCurrentRowChanged);
 
-  auto* buttons = new QHBoxLayout();
+  // Two short rows, so the editor fits the narrow Properties dock.
+  auto* adding = new QHBoxLayout();
   internals.NewType = NewTypeCombo(this);
   internals.NewType->setObjectName("PiNewPrimitiveType");
   internals.NewType->setToolTip(tr("The type of the primitive that Add appends."));
-  buttons->addWidget(internals.NewType);
-  auto button = [this, buttons](const char* name, const QString& text, const QString& tip) {
+  adding->addWidget(internals.NewType, 1);
+  auto* buttons = new QHBoxLayout();
+  QHBoxLayout* row = adding;
+  auto button = [this, &row](const char* name, const QString& text, const QString& tip) {
     auto* b = new QPushButton(text, this);
     b->setObjectName(name);
     b->setToolTip(tip);
-    buttons->addWidget(b);
+    b->setMinimumWidth(0);
+    row->addWidget(b);
     return b;
   };
   QObject::connect(
     button("PiAddPrimitive", tr("Add"), tr("Append a primitive of the type on the left")),
     &QPushButton::clicked, this, &pqPiPrimitiveListWidget::addPrimitive);
+  layout->addLayout(adding);
+  row = buttons;
   internals.Remove = button("PiRemovePrimitive", tr("Remove"), tr("Remove the selected primitive"));
   QObject::connect(
     internals.Remove, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::removePrimitive);
@@ -542,11 +548,11 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
     button("PiDuplicatePrimitive", tr("Duplicate"), tr("Insert a copy of the selected primitive"));
   QObject::connect(internals.Duplicate, &QPushButton::clicked, this,
     &pqPiPrimitiveListWidget::duplicatePrimitive);
-  internals.Up = button("PiMovePrimitiveUp", tr("Up"), tr("Move the selected primitive up"));
+  internals.Up = button("PiMovePrimitiveUp", tr("Up \u2191"), tr("Move the selected primitive up"));
   QObject::connect(
     internals.Up, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::movePrimitiveUp);
   internals.Down =
-    button("PiMovePrimitiveDown", tr("Down"), tr("Move the selected primitive down"));
+    button("PiMovePrimitiveDown", tr("Down \u2193"), tr("Move the selected primitive down"));
   QObject::connect(
     internals.Down, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::movePrimitiveDown);
   layout->addLayout(buttons);
@@ -563,7 +569,7 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
   auto* blending = new QFormLayout();
   internals.Blending = new QLineEdit(this);
   internals.Blending->setObjectName("PiBlending");
-  blending->addRow(tr("Blending r"), internals.Blending);
+  blending->addRow(tr("Model blending r"), internals.Blending);
   blending->labelForField(internals.Blending)
     ->setToolTip(tr("The blending parameter r of F = \u03a0 f_i \u2212 r: 0 is the union of "
                     "the primitives' surfaces, larger r inflates and blends them."));

@@ -117,9 +117,10 @@ int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::cerr << "usage: TestPiPrimitiveEditorGUI <PiSurfaces plugin .so>\n";
+    std::cerr << "usage: TestPiPrimitiveEditorGUI <PiSurfaces plugin .so> [picture folder]\n";
     return EXIT_FAILURE;
   }
+  // argv[2], optional: a folder for a picture of the editor.
   const std::string plugin = argv[1];
   // Qt and ParaView see the program name only (and want argv[argc] == nullptr).
   int qtArgc = 1;
@@ -147,7 +148,7 @@ int main(int argc, char* argv[])
   // The source's properties panel, as the Properties dock builds it.
   pqProxyWidget panel(proxy);
   panel.setApplyChangesImmediately(false);
-  panel.resize(500, 900);
+  panel.resize(460, 1100);
   panel.show();
   CHECK(QTest::qWaitForWindowExposed(&panel), "the panel is shown");
   auto apply = [&]() {
@@ -208,6 +209,13 @@ int main(int argc, char* argv[])
     "the refusal is a warning in the output window");
   CHECK(std::string(Find<QLineEdit>(&panel, "PiParameter_MajorRadius")->text().toStdString()) == "1",
     "the other fields still show the model");
+
+  if (argc > 2)
+  {
+    // A picture of the editor with the refused field, for the README.
+    QCoreApplication::processEvents();
+    panel.grab().save(QString(argv[2]) + "/PiPrimitiveEditor.png");
+  }
 
   // A superellipsoid with an odd exponent is refused too (the core's rule).
   auto* rowType = Find<QComboBox>(&panel, "PiPrimitiveTypeRow2");
