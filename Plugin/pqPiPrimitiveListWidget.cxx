@@ -252,6 +252,9 @@ QString Summary(const PrimitiveSpec& s)
 QComboBox* NewTypeCombo(QWidget* parent)
 {
   auto* combo = new QComboBox(parent);
+  // Narrow docks: the combo may be shorter than its longest entry.
+  combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  combo->setMinimumContentsLength(8);
   for (int t = 0; t < static_cast<int>(PrimitiveType::NumberOfTypes); ++t)
   {
     combo->addItem(pisurf::TypeLabel(static_cast<PrimitiveType>(t)), t);
@@ -418,6 +421,7 @@ public:
     panel->setObjectName("PiParameters");
     auto* form = new QFormLayout(panel);
     form->setContentsMargins(0, 0, 0, 0);
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows);
 
     QComboBox* type = NewTypeCombo(panel);
     type->setObjectName("PiPrimitiveType");
@@ -433,6 +437,7 @@ public:
                                        : QString("PiParameter_%1_%2").arg(f.Name).arg(i));
       edit->setProperty("piField", f.Name);
       edit->setProperty("piComponent", i);
+      edit->setMinimumWidth(30);
       edit->setText(FieldText(spec, f.Name, i));
       edit->setToolTip(QObject::tr(f.Tip));
       QObject::connect(
