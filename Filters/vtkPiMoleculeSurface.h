@@ -32,8 +32,14 @@
  * `atom_type` (ParaView's stock PDB reader), or `AtomicNumber`.
  *
  * Output: the triangle mesh of the outer envelope (OuterEnvelope, default on) or of all
- * sheets, with exact vertices (roots of F on the grid edges), point data `Normals`,
- * `Factor` (index of the nearest atom) and `AtomicNumber`, and field data: `PiSurfaceModel`
+ * sheets. Where two atoms overlap, the product of their two negative factors is positive:
+ * F > 0 in a lens-shaped region inside both, bounded by a closed sheet. The envelope
+ * never includes it, however thin the F < 0 wall between it and the outside (at small r,
+ * thinner than the grid): every sphere has F = −r < 0, so the outside component of
+ * {F > 0} lies outside every sphere, and the mesher's flood fill does not enter points
+ * inside a sphere (pisurf::Field::OffOuterSide). Exact vertices (roots of F on the grid
+ * edges; an edge that runs into such a wall gets the root nearest the outside), point
+ * data `Normals`, `Factor` (index of the nearest atom) and `AtomicNumber`, and field data: `PiSurfaceModel`
  * (the Global model as .pisurf JSON, for molecules up to 10000 atoms, so that Pi Ray
  * Cast works downstream), `PiMoleculeCenters` and `PiMoleculeRadii` (the atoms, compact),
  * `SurfaceArea` and `EnclosedVolume` of the mesh.
