@@ -31,6 +31,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -46,11 +47,48 @@ vtkCxxSetObjectMacro(vtkPiFlyingEdges, PiSurface, vtkPiSurface);
 
 // Work buffers kept between executions: interactive re-meshing (and every execution
 // after the first) does not pay for fresh memory again.
+//
+//
+// Incremental re-meshing: each polynomial factor's restrictions to the grid rows are
+// kept too, keyed by the factor's content (terms and placement) and the grid. When a
+// live edit changes one factor (a moved primitive), the others are not restricted
+// again. The restrictions are the same numbers a fresh execution computes, so the mesh
+// is bit-identical.
+namespace
+{
+struct FactorCache
+{
+  std::vector<double> Key;   // the factor's content (see FactorKey)
+  int Coefficients = 0;      // per row: degree + 1
+  std::vector<double> Rows;  // per grid row (j, k): the restricted coefficients
+  std::vector<char> RowDone; // per grid row: Rows holds it
+  bool Used = false;          // matched by a factor of the current execution
+};
+
+// What a factor's restrictions and values depend on: its terms and its placement.
+std::vector<double> FactorKey(const pisurf::PolynomialFactor& f)
+{
+  std::vector<double> key;
+  for (const pisurf::Monomial& m : f.Poly.GetTerms())
+  {
+    key.insert(key.end(), { m.Coefficient, double(m.I), double(m.J), double(m.K) });
+  }
+  for (const auto& row : f.A)
+  {
+    key.insert(key.end(), row, row + 3);
+  }
+  key.insert(key.end(), f.B, f.B + 3);
+  return key;
+}
+}
+
 struct vtkPiFlyingEdges::vtkInternals
 {
   std::vector<double> Values;
   std::vector<signed char> State;
   std::shared_ptr<const pisurf::Field> Field;
+  std::vector<double> CacheGrid; // the grid the factor caches belong to
+  std::vector<FactorCache> Factors;
 };
 
 void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
@@ -337,6 +375,127 @@ struct SampleBlocks
             out[i - c[0] * BlockCells] = std::max(-ValueLimit, std::min(ValueLimit, F));
           }
         }
+      }
+    }
+  }
+};
+
+// The factor caches of this execution: per factor of the kernel, its cache (null for a
+// factor that is not a polynomial; factors of equal content share one), or none at all
+// (empty) for a field or when the restrictions of every row would exceed 64 MiB.
+std::vector<FactorCache*> PrepareFactorCaches(std::vector<double>& gridKey,
+  std::vector<FactorCache>& store, const pisurf::ProductKernel* kernel, const Grid& g)
+{
+  size_t polynomials = 0;
+  for (size_t f = 0; kernel && f < kernel->GetNumberOfFactors(); ++f)
+  {
+    polynomials += kernel->GetFactor(f).IsPolynomial;
+  }
+  constexpr double MaximumCoefficients = double(1 << 23); // 64 MiB of doubles
+  if (polynomials == 0 ||
+    double(g.Dims[1]) * g.Dims[2] * kernel->GetLineCoefficientCount() > MaximumCoefficients)
+  {
+    store.clear();
+    return {};
+  }
+  const std::vector<double> grid{ double(g.Dims[0]), double(g.Dims[1]), double(g.Dims[2]),
+    g.Origin[0], g.Origin[1], g.Origin[2], g.Spacing[0], g.Spacing[1], g.Spacing[2] };
+  if (grid != gridKey)
+  {
+    store.clear();
+    gridKey = grid;
+  }
+  for (FactorCache& cache : store)
+  {
+    cache.Used = false;
+  }
+  const size_t rows = size_t(g.Dims[1]) * g.Dims[2];
+  std::vector<std::ptrdiff_t> index(kernel->GetNumberOfFactors(), -1);
+  for (size_t f = 0; f < kernel->GetNumberOfFactors(); ++f)
+  {
+    const pisurf::Factor& factor = kernel->GetFactor(f);
+    if (!factor.IsPolynomial)
+    {
+      continue;
+    }
+    std::vector<double> key = FactorKey(factor.Polynomial);
+    auto found = std::find_if(
+      store.begin(), store.end(), [&](const FactorCache& c) { return c.Key == key; });
+    if (found == store.end())
+    {
+      FactorCache cache;
+      cache.Key = std::move(key);
+      cache.Coefficients = std::max(factor.Polynomial.Poly.GetDegree(), 0) + 1;
+      cache.Rows.resize(rows * cache.Coefficients);
+      cache.RowDone.assign(rows, 0);
+      store.push_back(std::move(cache));
+      found = store.end() - 1;
+    }
+    found->Used = true;
+    index[f] = found - store.begin();
+  }
+  // Factors no longer in the product (a moved primitive's old placement) are dropped.
+  std::vector<FactorCache> kept;
+  std::vector<std::ptrdiff_t> renumber(store.size(), -1);
+  for (size_t c = 0; c < store.size(); ++c)
+  {
+    if (store[c].Used)
+    {
+      renumber[c] = static_cast<std::ptrdiff_t>(kept.size());
+      kept.push_back(std::move(store[c]));
+    }
+  }
+  store = std::move(kept);
+  std::vector<FactorCache*> caches(kernel->GetNumberOfFactors(), nullptr);
+  for (size_t f = 0; f < caches.size(); ++f)
+  {
+    if (index[f] >= 0)
+    {
+      caches[f] = &store[renumber[index[f]]];
+    }
+  }
+  return caches;
+}
+
+// PASS 2, incremental: each factor is restricted to the rows it has not been restricted
+// to on this grid yet, about the middle of the row as in RestrictRows; the row's
+// coefficients are then gathered from the caches in RestrictRows's layout.
+struct RestrictCachedRows
+{
+  const Grid* G;
+  const std::vector<vtkIdType>* Rows;
+  const std::vector<FactorCache*>* Caches;
+  const pisurf::ProductKernel* Kernel;
+  std::vector<double>* Coefficients;
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    const size_t n = this->Kernel->GetLineCoefficientCount();
+    const double step[3] = { this->G->Spacing[0], 0.0, 0.0 };
+    const double mid = 0.5 * (this->G->Dims[0] - 1);
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      const vtkIdType row = (*this->Rows)[r];
+      const int j = static_cast<int>(row % this->G->Dims[1]);
+      const int k = static_cast<int>(row / this->G->Dims[1]);
+      const double o[3] = { this->G->Origin[0] + mid * this->G->Spacing[0],
+        this->G->Origin[1] + j * this->G->Spacing[1], this->G->Origin[2] + k * this->G->Spacing[2] };
+      double* out = this->Coefficients->data() + r * n;
+      for (size_t f = 0; f < this->Caches->size(); ++f)
+      {
+        FactorCache* cache = (*this->Caches)[f];
+        if (!cache)
+        {
+          continue;
+        }
+        double* coefficients = cache->Rows.data() + row * cache->Coefficients;
+        if (!cache->RowDone[row])
+        {
+          this->Kernel->GetFactor(f).Polynomial.RestrictToLine(o, step, coefficients);
+          cache->RowDone[row] = 1;
+        }
+        std::copy(coefficients, coefficients + cache->Coefficients, out);
+        out += cache->Coefficients;
       }
     }
   }
@@ -662,10 +821,16 @@ struct Contour
   Mode Pass = Count;
   int SlabBegin = 0, SlabEnd = 1 << 30; // this piece's block layers along z
   signed char* Signs; // per active block: the signs the contouring sees (Count fills them)
+  // Per active block, per cell: its marching-cubes case (Count fills them, Triangles
+  // reads them and skips the cells without triangles).
+  unsigned char* CellCases;
 
   static constexpr int Points = BlockPoints * BlockPoints * BlockPoints;
 
+  static constexpr int Cells = BlockCells * BlockCells * BlockCells;
+
   static int Local(int li, int lj, int lk) { return (lk * BlockPoints + lj) * BlockPoints + li; }
+  static int CellIndex(int li, int lj, int lk) { return (lk * BlockCells + lj) * BlockCells + li; }
   static unsigned short Key(int axis, int li, int lj, int lk)
   {
     return static_cast<unsigned short>(
@@ -770,26 +935,35 @@ struct Contour
             table[this->EdgeKey[id]] = id;
           }
         }
+        unsigned char* cases = this->CellCases + size_t(s) * Cells;
         for (int k = f[2]; k < l[2]; ++k)
           for (int j = f[1]; j < l[1]; ++j)
             for (int i = f[0]; i < l[0]; ++i)
             {
-              int index = 0;
-              for (int q = 0; q < 8; ++q)
+              unsigned char& index = cases[CellIndex(i - f[0], j - f[1], k - f[2])];
+              if (this->Pass == Count)
               {
-                if (sign[Local(i - f[0] + Corner[q][0], j - f[1] + Corner[q][1],
-                      k - f[2] + Corner[q][2])] > 0)
+                index = 0;
+                for (int q = 0; q < 8; ++q)
                 {
-                  index |= 1 << q;
+                  if (sign[Local(i - f[0] + Corner[q][0], j - f[1] + Corner[q][1],
+                        k - f[2] + Corner[q][2])] > 0)
+                  {
+                    index |= 1 << q;
+                  }
                 }
               }
               const int* list = this->Cases[index].edges;
+              if (this->Pass == Count)
+              {
+                for (int e = 0; list[e] >= 0; e += 3)
+                {
+                  ++triangle;
+                }
+                continue;
+              }
               for (int e = 0; list[e] >= 0; e += 3, ++triangle)
               {
-                if (this->Pass != Triangles)
-                {
-                  continue;
-                }
                 for (int m = 0; m < 3; ++m)
                 {
                   const int* ends = Edge[list[e + m]];
@@ -1244,11 +1418,23 @@ int vtkPiFlyingEdges::RequestData(
         }
       }
   }
+  // The polynomial factors keep their row restrictions between executions (see
+  // FactorCache): only new factors and new rows are restricted.
+  std::vector<FactorCache*> caches =
+    PrepareFactorCaches(this->Internals->CacheGrid, this->Internals->Factors, kernel.get(), g);
   std::vector<double> coefficients;
   if (kernel)
   {
     coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
+  }
+  if (kernel && caches.empty())
+  {
     RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+  }
+  else if (kernel)
+  {
+    RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
     vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
   }
 
@@ -1312,9 +1498,11 @@ int vtkPiFlyingEdges::RequestData(
   const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
   Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), nullptr,
     &vertexCount, &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count,
-    0, 1 << 30, nullptr };
+    0, 1 << 30, nullptr, nullptr };
   std::unique_ptr<signed char[]> signs(new signed char[size_t(activeCount) * Contour::Points]);
   contour.Signs = signs.get();
+  std::unique_ptr<unsigned char[]> cellCases(new unsigned char[size_t(activeCount) * Contour::Cells]);
+  contour.CellCases = cellCases.get();
   contour.SlabBegin = slabBegin;
   contour.SlabEnd = slabEnd;
   vtkSMPTools::For(0, activeCount, contour);

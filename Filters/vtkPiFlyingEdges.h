@@ -55,7 +55,11 @@
  *
  * The largest work buffers (the active blocks' values, the envelope's point states)
  * are kept between executions, so re-meshing does not pay for fresh memory again;
- * they are released with the object.
+ * they are released with the object. So are each polynomial factor's row
+ * restrictions (pass 2), keyed by the factor's terms and placement and by the grid:
+ * when an edit changes one factor, only that factor is restricted again, and the mesh
+ * is bit-identical to a fresh execution's (up to 64 MiB of coefficients; beyond that
+ * every execution restricts every factor).
  *
  * Factors that are not polynomials have no interval enclosure: every block is then
  * active and they are evaluated point by point through their virtual calls.

@@ -34,6 +34,11 @@ check(source.Model == vtkPiSurfaceSource().GetModel(), "Model default (the paper
 source.UpdatePipeline()
 check(source.GetDataInformation(0).GetNumberOfCells() > 1000, "Pi Surface source meshes its model")
 check(source.GetDataInformation(1).GetNumberOfCells() > 1000, "Pi Surface source: primitives port")
+# The translucent grey default display is the GUI's (pqPiDisplayBehavior): pvpython's
+# Show() keeps ParaView's own defaults (opaque, solid white here).
+display = Show(source, CreateView("RenderView"))
+check(display.Opacity == 1 and display.ColorArrayName[1] == "",
+      "pvpython Show() keeps ParaView's defaults: Opacity %g" % display.Opacity)
 formic = PiSurface(Model=open(os.path.join(models, "formic_acid.pisurf")).read(), Resolution=64)
 formic.UpdatePipeline()
 check(formic.GetDataInformation(1).DataInformation.GetArrayInformation("Factor", 0) is not None,

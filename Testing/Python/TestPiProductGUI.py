@@ -1,6 +1,7 @@
 """Scripted GUI test (run by `paraview --script=...` under Xvfb, the plugin loaded with
 --plugins=PiSurfaces): build the paper's two-spheres product from two Pi Primitive
-sources, change their distance, and compare the render view with a baseline
+sources, check the GUI's default display of the product (translucent grey), change their
+distance, and compare the render view with a baseline
 (Testing/Baselines/PiProductGUI.png). Exits with os._exit(rc) so that the GUI quits."""
 import os
 import sys
@@ -28,6 +29,10 @@ try:
     view.OrientationAxesVisibility = 0
     view.Background = [0.32, 0.34, 0.43]
     shown = Show(product, view)
+    # The plugin's display behaviour (GUI only): the Pi-surface translucent solid grey.
+    say("product shown with opacity %g, colour array %r" % (shown.Opacity, shown.ColorArrayName[1]))
+    if not shown.Opacity < 1 or shown.ColorArrayName[1]:
+        raise RuntimeError("the GUI did not give the Pi Product its translucent grey look")
     shown.DiffuseColor = [0.8, 0.8, 0.8]
     for source, colour in ((right, [0.9, 0.3, 0.2]), (left, [0.2, 0.5, 0.9])):
         d = Show(source, view)

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class pqPiDisplayBehavior
+ * @brief the paper's default look for Pi-surfaces shown in a render view of the GUI
+ *
+ * An auto-start part of the PiSurfaces plugin. When the GUI creates a representation
+ * for the output of "Pi Surface", "Pi Surface Model Reader" or "Pi Product" (the first
+ * Show of that port in that view), it gives it the look of the paper's figures: the
+ * Π-surface (port 0) solid grey and translucent (no scalar colouring, Opacity
+ * DefaultOpacity), the Primitives port (port 1) coloured by `Factor`. "Pi Primitive"
+ * outputs are left as ParaView shows them (opaque, coloured).
+ *
+ * It only touches newly created representations: nothing while a state file is
+ * loaded (vtkSMSessionProxyManager::GetInLoadXMLState) or while undo/redo re-creates
+ * proxies, so saved states restore what the user saved, and the user may change
+ * everything afterwards. It lives in the Qt client: pvpython and pvbatch `Show()` keep
+ * ParaView's defaults.
+ *
+ * @warning It reacts to pqServerManagerModel::representationAdded, which ParaView
+ * emits while vtkSMParaViewPipelineControllerWithRendering::Show registers the new
+ * representation, after the representation's defaults (ColorArrayName) are chosen.
+ */
+#ifndef pqPiDisplayBehavior_h
+#define pqPiDisplayBehavior_h
+
+#include <QObject>
+
+class pqRepresentation;
+class vtkSMProxy;
+
+class pqPiDisplayBehavior : public QObject
+{
+  Q_OBJECT
+  typedef QObject Superclass;
+
+public:
+  pqPiDisplayBehavior(QObject* parent = nullptr);
+  ~pqPiDisplayBehavior() override;
+
+  /// The opacity of the Π-surface (0.35) and its grey (0.75 0.75 0.75).
+  static constexpr double DefaultOpacity = 0.35;
+  static constexpr double DefaultGrey = 0.75;
+
+  /// Auto-start interface: connect to / disconnect from the server manager model.
+  void startup();
+  void shutdown();
+
+  /// Gives `representation` (a render-view representation) the Pi-surface look if
+  /// its input is port 0 or 1 of one of the Pi-surface proxies; false if it is not one.
+  static bool ApplyDefaults(vtkSMProxy* representation);
+
+protected Q_SLOTS:
+  void onRepresentationAdded(pqRepresentation* representation);
+
+private:
+  Q_DISABLE_COPY(pqPiDisplayBehavior)
+};
+
+#endif
