@@ -1019,6 +1019,23 @@ struct VertexAttributes
     // F itself is nearly linear along a short edge, and cheapest (its values at the ends
     // are the grid's); where it is beyond 1e200 at an end, its compressed form
     // sign(F)·ln(1 + |F|) is used instead.
+    // A field that can certify the first root from the positive end in one pass (see
+    // pisurf::Field::FirstRoot): the root nearest the outside, as the general method
+    // below would pick.
+    if (this->Kernel->Field)
+    {
+      const bool bracket = (va > 0 && vb < 0) || (va < 0 && vb > 0);
+      const bool thinWall = va > 0 && vb > 0 && (t == 0.0 || t == 1.0);
+      if (bracket || thinWall)
+      {
+        const bool fromA = bracket ? va > 0 : t == 0.0;
+        double s;
+        if (this->Kernel->Field->FirstRoot(fromA ? a : b, fromA ? b : a, this->Tolerance, s))
+        {
+          return fromA ? s : 1.0 - s;
+        }
+      }
+    }
     bool compressed = false;
     auto phi = [&](const double x[3]) {
       return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);

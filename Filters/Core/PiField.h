@@ -42,6 +42,20 @@ public:
   /// moved to the surface nearest the outside, so a grid too coarse to resolve the thin
   /// wall around such a component (the lens where two atom spheres overlap, at small r)
   /// cannot leak into it. The default knows nothing and says false.
+  /// The first root of F on the segment from `from` to `to`, where F(from) > 0, as the
+  /// fraction s of the way, certified to within `tolerance` (a length): return true only
+  /// when F > 0 provably holds before s − tolerance and a root lies within `tolerance` of
+  /// s. A field with structure to exploit (a molecule, whose product is astronomically
+  /// large away from its spheres) answers in one pass; the default says false, and the
+  /// mesher's general root finding runs.
+  virtual bool FirstRoot(const double from[3], const double to[3], double tolerance, double& s) const
+  {
+    (void)from;
+    (void)to;
+    (void)tolerance;
+    (void)s;
+    return false;
+  }
   virtual bool OffOuterSide(const double p[3]) const
   {
     (void)p;

@@ -190,7 +190,12 @@ struct MoleculeField::Cell
   double G[3] = { 0, 0, 0 };
   double H[6] = { 0, 0, 0, 0, 0, 0 }; // xx yy zz xy xz yz
   double Bound = 0.0;
+  // Global: a lower bound of Σ_far ln f_j over the cell's box grown by FarMargin.
+  double FarLogMin = 0.0;
 };
+
+// Segments that start in a cell and are at most this long use its FarLogMin.
+constexpr double FarMargin = 1.0;
 
 MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> radii,
   const MoleculeSettings& settings, const double region[6])
@@ -368,6 +373,7 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   // Far atoms: the Taylor polynomial of Σ ln f_j about the centre, and its bound.
   const double h = 0.5 * std::sqrt(3.0) * s;
   double boundSum = 0.0;
+  Scaled farMin; // Π_far of min f_j over the box grown by FarMargin
   size_t next = 0;
   for (size_t i = 0; i < this->Radii.size(); ++i)
   {
@@ -396,9 +402,12 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
     const double e2 = Distance2ToBox(ci, box);
     const double e = std::sqrt(e2);
     const double qe = e2 - R2;
+    // e >= R + NearDistance > R + FarMargin: the grown box stays outside the sphere.
+    farMin.Multiply((e - FarMargin) * (e - FarMargin) - R2);
     boundSum += std::max(4.0 / std::pow(qe, 1.5), e * (4.0 * e2 + 12.0 * R2) / (qe * qe * qe));
   }
   cell.Bound = h * h * h / 6.0 * boundSum;
+  cell.FarLogMin = farMin.Log();
   double seen = this->MaxBound.load();
   while (cell.Bound > seen && !this->MaxBound.compare_exchange_weak(seen, cell.Bound))
   {
@@ -573,6 +582,98 @@ double MoleculeField::EvaluateCompressed(const double p[3]) const
   }
   const double magnitude = std::fabs(F) < 1e200 ? std::log1p(std::fabs(F)) : logAbsF;
   return std::copysign(magnitude, F);
+}
+
+bool MoleculeField::FirstRoot(
+  const double from[3], const double to[3], double tolerance, double& s) const
+{
+  if (this->Settings.Mode != MoleculeMode::Global || !(this->Level > 0))
+  {
+    return false;
+  }
+  const Cell* cell = this->CellAt(from);
+  const double delta[3] = { to[0] - from[0], to[1] - from[1], to[2] - from[2] };
+  const double A = delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2];
+  const double length = std::sqrt(A);
+  // Every atom that can vanish on the segment is near `from`'s cell (Near holds the
+  // atoms within R + NearDistance of the cell's box) if the segment is shorter than
+  // NearDistance.
+  if (!cell || !(length > 0) || length > FarMargin || this->Settings.NearDistance <= FarMargin)
+  {
+    return false;
+  }
+  // q_i(u) = |from + u·delta − c_i|² − R_i² = A u² + B_i u + C_i on u in [0, 1].
+  auto coefficients = [&](int i, double& B, double& C) {
+    const double* c = &this->Centers[3 * i];
+    const double v[3] = { from[0] - c[0], from[1] - c[1], from[2] - c[2] };
+    B = 2.0 * (v[0] * delta[0] + v[1] * delta[1] + v[2] * delta[2]);
+    C = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - this->Radii[i] * this->Radii[i];
+  };
+  // s1: the first u in (0, 1] where a near factor vanishes.
+  double s1 = HUGE_VAL;
+  for (int i : cell->Near)
+  {
+    double B, C;
+    coefficients(i, B, C);
+    if (!(C > 0))
+    {
+      return false; // `from` inside or on a sphere: not the outside case this handles
+    }
+    const double disc = B * B - 4.0 * A * C;
+    if (disc < 0 || B >= 0)
+    {
+      continue; // no real root, or both roots at u < 0 (C > 0, B >= 0)
+    }
+    // The smaller root, without cancellation: 2C / (−B + sqrt(disc)).
+    const double u = 2.0 * C / (-B + std::sqrt(disc));
+    if (u <= 1.0)
+    {
+      s1 = std::min(s1, u);
+    }
+  }
+  if (!(s1 <= 1.0))
+  {
+    return false; // no sphere entered: a root of another kind (P dips below the level)
+  }
+  const double eps = tolerance / length;
+  const double u1 = s1 - eps;
+  if (!(u1 > 0))
+  {
+    return false;
+  }
+  // ln of a lower bound of |P| on [0, u1]: the near factors' exact minima there (none
+  // vanishes before s1), the far factors' minima over the whole segment.
+  auto minimum = [&](double B, double C) {
+    // min over [0, u1] of A u² + B u + C (positive there).
+    double m = std::min(C, (A * u1 + B) * u1 + C);
+    const double vertex = -B / (2.0 * A);
+    if (vertex > 0 && vertex < u1)
+    {
+      m = std::min(m, C - B * B / (4.0 * A));
+    }
+    return m;
+  };
+  Scaled bound;
+  for (int i : cell->Near)
+  {
+    double B, C;
+    coefficients(i, B, C);
+    const double m = minimum(B, C);
+    if (!(m > 0))
+    {
+      return false; // rounding: let the general method decide
+    }
+    bound.Multiply(m);
+  }
+  double logBound = bound.Log() + (cell->HasFar ? cell->FarLogMin : 0.0);
+  // Rounding in the minima: a relative 1e-12 per factor, far below the margin asked.
+  const double margin = 1e-9 * static_cast<double>(this->Radii.size()) + 1.0;
+  if (!(logBound > std::log(this->Level) + margin))
+  {
+    return false;
+  }
+  s = s1 - 0.5 * eps;
+  return true;
 }
 
 bool MoleculeField::OffOuterSide(const double p[3]) const
