@@ -11,8 +11,10 @@
  *   1, the paper's value). Small r hugs the union of the spheres. Works for proteins:
  *   the product is accumulated with its own binary exponent (no overflow, exact sign),
  *   and far atoms enter each 2 Å cell through a Taylor polynomial of their log-product
- *   with a rigorous error bound; points where that bound could change the sign are
- *   evaluated exactly, so the surface is exact (see PiMolecule.h for the formulas).
+ *   with a rigorous error bound (the farthest ones through one expansion per 8 Å
+ *   supercell); points where that bound could change the sign are evaluated exactly, so
+ *   the surface is exact (see PiMolecule.h for the formulas). Vertices are certified in
+ *   one pass where the far atoms make the product huge off the spheres.
  * - Mode Local: F = Π g_i − r/(1 + r) with g_i = 1 + (f_i − 1)·w(u_i), a factor with the
  *   sign of f_i, C², equal to f_i inside the atom and to 1 beyond InfluenceRadius from
  *   its sphere (u_i = (|p − c_i|² − R_i²)/(ρ_i² − R_i²), ρ_i = R_i + InfluenceRadius,

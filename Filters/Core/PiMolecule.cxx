@@ -196,6 +196,27 @@ struct MoleculeField::Cell
 
 // Segments that start in a cell and are at most this long use its FarLogMin.
 constexpr double FarMargin = 1.0;
+// Supercells: SuperCells³ cells. Atoms beyond R + SuperNear of a supercell's box enter
+// its cells through one expansion per supercell (the two-level far field).
+constexpr int SuperCells = 4;
+constexpr double SuperNear = 8.0;
+
+struct MoleculeField::Expansion
+{
+  double L0 = 0.0;
+  double G[3] = { 0, 0, 0 };
+  double H[6] = { 0, 0, 0, 0, 0, 0 };
+  double Bound = 0.0;
+  double LogMin = 0.0;
+  size_t Count = 0;
+};
+
+struct MoleculeField::Super
+{
+  double Box[6] = { 0, 0, 0, 0, 0, 0 };
+  double Center[3] = { 0, 0, 0 };
+  Expansion Far;
+};
 
 MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> radii,
   const MoleculeSettings& settings, const double region[6])
@@ -253,6 +274,13 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   }
   this->Cells.resize(count);
   this->Once.reset(new std::once_flag[count]);
+  for (int a = 0; a < 3; ++a)
+  {
+    this->SuperDims[a] = (this->Dims[a] + SuperCells - 1) / SuperCells;
+  }
+  const size_t supers = size_t(this->SuperDims[0]) * this->SuperDims[1] * this->SuperDims[2];
+  this->Supers.resize(supers);
+  this->SuperOnce.reset(new std::once_flag[supers]);
   if (this->Settings.Mode == MoleculeMode::Local)
   {
     const size_t n = this->Radii.size();
@@ -370,48 +398,146 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   {
     return;
   }
-  // Far atoms: the Taylor polynomial of Σ ln f_j about the centre, and its bound.
-  const double h = 0.5 * std::sqrt(3.0) * s;
-  double boundSum = 0.0;
-  Scaled farMin; // Π_far of min f_j over the box grown by FarMargin
-  size_t next = 0;
-  for (size_t i = 0; i < this->Radii.size(); ++i)
+  // Far atoms. Those beyond R_j + SuperNear of the cell's supercell come through the
+  // supercell's expansion (built once for 4³ cells); the others ("mid") are summed here.
+  const Super& super = this->SuperAt(c);
+  std::vector<char> isMid;
+  std::vector<int> mid;
   {
-    if (next < cell.Near.size() && cell.Near[next] == static_cast<int>(i))
+    const int superReach =
+      static_cast<int>(std::ceil((this->MaxRadius + SuperNear + SuperCells * s) / s));
+    int mlo[3], mhi[3];
+    for (int a = 0; a < 3; ++a)
     {
-      ++next;
-      continue;
+      mlo[a] = std::max(0, c[a] - superReach);
+      mhi[a] = std::min(this->Dims[a] - 1, c[a] + superReach);
     }
-    cell.HasFar = true;
-    const double* ci = &this->Centers[3 * i];
-    const double v[3] = { cell.Center[0] - ci[0], cell.Center[1] - ci[1], cell.Center[2] - ci[2] };
-    const double R2 = this->Radii[i] * this->Radii[i];
-    const double q = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2;
-    cell.L0 += std::log(q);
-    for (int k = 0; k < 3; ++k)
+    size_t next = 0;
+    std::vector<int> candidates;
+    for (int z = mlo[2]; z <= mhi[2]; ++z)
+      for (int y = mlo[1]; y <= mhi[1]; ++y)
+        for (int x = mlo[0]; x <= mhi[0]; ++x)
+        {
+          const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
+          for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
+          {
+            candidates.push_back(this->BinAtoms[k]);
+          }
+        }
+    std::sort(candidates.begin(), candidates.end());
+    for (int i : candidates)
     {
-      cell.G[k] += 2.0 * v[k] / q;
+      while (next < cell.Near.size() && cell.Near[next] < i)
+      {
+        ++next;
+      }
+      if (next < cell.Near.size() && cell.Near[next] == i)
+      {
+        continue;
+      }
+      const double reach = this->Radii[i] + SuperNear;
+      if (Distance2ToBox(&this->Centers[3 * i], super.Box) < reach * reach)
+      {
+        mid.push_back(i); // not near, not in the supercell's outer set
+      }
     }
-    const double q2 = q * q;
-    cell.H[0] += 2.0 / q - 4.0 * v[0] * v[0] / q2;
-    cell.H[1] += 2.0 / q - 4.0 * v[1] * v[1] / q2;
-    cell.H[2] += 2.0 / q - 4.0 * v[2] * v[2] / q2;
-    cell.H[3] -= 4.0 * v[0] * v[1] / q2;
-    cell.H[4] -= 4.0 * v[0] * v[2] / q2;
-    cell.H[5] -= 4.0 * v[1] * v[2] / q2;
-    const double e2 = Distance2ToBox(ci, box);
-    const double e = std::sqrt(e2);
-    const double qe = e2 - R2;
-    // e >= R + NearDistance > R + FarMargin: the grown box stays outside the sphere.
-    farMin.Multiply((e - FarMargin) * (e - FarMargin) - R2);
-    boundSum += std::max(4.0 / std::pow(qe, 1.5), e * (4.0 * e2 + 12.0 * R2) / (qe * qe * qe));
   }
-  cell.Bound = h * h * h / 6.0 * boundSum;
-  cell.FarLogMin = farMin.Log();
+  const double h = 0.5 * std::sqrt(3.0) * s;
+  Expansion local;
+  AddFar(mid, cell.Center, box, h, local);
+  // The supercell's quadratic re-centred on the cell (exact for a quadratic); its bound
+  // holds over the supercell, hence over the cell.
+  const double d0[3] = { cell.Center[0] - super.Center[0], cell.Center[1] - super.Center[1],
+    cell.Center[2] - super.Center[2] };
+  const double* H = super.Far.H;
+  const double Hd[3] = { H[0] * d0[0] + H[3] * d0[1] + H[4] * d0[2],
+    H[3] * d0[0] + H[1] * d0[1] + H[5] * d0[2], H[4] * d0[0] + H[5] * d0[1] + H[2] * d0[2] };
+  cell.L0 = local.L0 + super.Far.L0 + super.Far.G[0] * d0[0] + super.Far.G[1] * d0[1] +
+    super.Far.G[2] * d0[2] + 0.5 * (d0[0] * Hd[0] + d0[1] * Hd[1] + d0[2] * Hd[2]);
+  for (int k = 0; k < 3; ++k)
+  {
+    cell.G[k] = local.G[k] + super.Far.G[k] + Hd[k];
+  }
+  for (int k = 0; k < 6; ++k)
+  {
+    cell.H[k] = local.H[k] + H[k];
+  }
+  cell.HasFar = local.Count + super.Far.Count > 0;
+  cell.Bound = local.Bound + super.Far.Bound;
+  cell.FarLogMin = local.LogMin + super.Far.LogMin;
   double seen = this->MaxBound.load();
   while (cell.Bound > seen && !this->MaxBound.compare_exchange_weak(seen, cell.Bound))
   {
   }
+}
+
+void MoleculeField::AddFar(const std::vector<int>& atoms, const double centre[3],
+  const double box[6], double h, Expansion& out) const
+{
+  // The Taylor polynomial of Σ ln f_j about `centre`, the rigorous bound of its
+  // remainder over `box` (half-diagonal h), and ln Π min f_j over `box` grown by
+  // FarMargin (every atom here is more than R + FarMargin from the box).
+  double boundSum = 0.0;
+  Scaled farMin;
+  for (int i : atoms)
+  {
+    const double* ci = &this->Centers[3 * i];
+    const double v[3] = { centre[0] - ci[0], centre[1] - ci[1], centre[2] - ci[2] };
+    const double R2 = this->Radii[i] * this->Radii[i];
+    const double q = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2;
+    out.L0 += std::log(q);
+    for (int k = 0; k < 3; ++k)
+    {
+      out.G[k] += 2.0 * v[k] / q;
+    }
+    const double q2 = q * q;
+    out.H[0] += 2.0 / q - 4.0 * v[0] * v[0] / q2;
+    out.H[1] += 2.0 / q - 4.0 * v[1] * v[1] / q2;
+    out.H[2] += 2.0 / q - 4.0 * v[2] * v[2] / q2;
+    out.H[3] -= 4.0 * v[0] * v[1] / q2;
+    out.H[4] -= 4.0 * v[0] * v[2] / q2;
+    out.H[5] -= 4.0 * v[1] * v[2] / q2;
+    const double e2 = Distance2ToBox(ci, box);
+    const double e = std::sqrt(e2);
+    const double qe = e2 - R2;
+    boundSum += std::max(4.0 / std::pow(qe, 1.5), e * (4.0 * e2 + 12.0 * R2) / (qe * qe * qe));
+    farMin.Multiply((e - FarMargin) * (e - FarMargin) - R2);
+  }
+  out.Count += atoms.size();
+  out.Bound += h * h * h / 6.0 * boundSum;
+  out.LogMin += atoms.empty() ? 0.0 : farMin.Log();
+}
+
+const MoleculeField::Super& MoleculeField::SuperAt(const int cell[3]) const
+{
+  int c[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = cell[a] / SuperCells;
+  }
+  const long id = (long(c[2]) * this->SuperDims[1] + c[1]) * this->SuperDims[0] + c[0];
+  Super& super = this->Supers[id];
+  std::call_once(this->SuperOnce[id], [&] {
+    const double s = this->Settings.CellSize * SuperCells;
+    for (int a = 0; a < 3; ++a)
+    {
+      super.Box[2 * a] = this->Origin[a] + c[a] * s;
+      super.Box[2 * a + 1] = super.Box[2 * a] + s;
+      super.Center[a] = super.Box[2 * a] + 0.5 * s;
+    }
+    // Outer atoms: beyond R_j + SuperNear of the supercell's box.
+    std::vector<int> outer;
+    for (size_t i = 0; i < this->Radii.size(); ++i)
+    {
+      const double reach = this->Radii[i] + SuperNear;
+      if (Distance2ToBox(&this->Centers[3 * i], super.Box) >= reach * reach)
+      {
+        outer.push_back(static_cast<int>(i));
+      }
+    }
+    this->AddFar(outer, super.Center, super.Box, 0.5 * std::sqrt(3.0) * s, super.Far);
+  });
+  return super;
 }
 
 int MoleculeField::EvaluateExactSignAndLog(const double p[3], double& logAbs) const
@@ -834,6 +960,12 @@ void MoleculeField::EvaluateVertex(
 int MoleculeField::ClassifyBox(const double box[6]) const
 {
   std::vector<Interval> enclosures;
+  // Global: the atoms within R + NearDistance of the box enter with their exact ranges;
+  // every other atom is at least NearDistance outside its sphere there, so its factor is
+  // at least (R + d)² − R² >= d² (d = NearDistance): the far product is at least
+  // d^(2·far) (no upper bound is used). Cost: the atoms near the box, not all atoms.
+  const double nearDistance = this->Settings.NearDistance;
+  size_t nearCount = 0;
   auto add = [&](size_t i) {
     const double* c = &this->Centers[3 * i];
     const double R2 = this->Radii[i] * this->Radii[i];
@@ -841,7 +973,12 @@ int MoleculeField::ClassifyBox(const double box[6]) const
     const double fmin = dmin2 - R2, fmax = FarthestDistance2(c, box) - R2;
     if (this->Settings.Mode == MoleculeMode::Global)
     {
-      enclosures.push_back({ fmin, fmax });
+      const double reach = this->Radii[i] + nearDistance;
+      if (dmin2 < reach * reach)
+      {
+        enclosures.push_back({ fmin, fmax });
+        ++nearCount;
+      }
       return;
     }
     const double rho = this->Radii[i] + this->Settings.InfluenceRadius;
@@ -852,16 +989,9 @@ int MoleculeField::ClassifyBox(const double box[6]) const
     // g lies between f and 1 (g = f where f < 0).
     enclosures.push_back({ std::min(fmin, 1.0), std::max(fmax, 1.0) });
   };
-  if (this->Settings.Mode == MoleculeMode::Global)
   {
-    enclosures.reserve(this->Radii.size());
-    for (size_t i = 0; i < this->Radii.size(); ++i)
-    {
-      add(i);
-    }
-  }
-  else
-  {
+    // The atoms binned within MaxReach (R + NearDistance or R + InfluenceRadius at most)
+    // of the box: every atom that enters exactly.
     const double s = this->Settings.CellSize;
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a)
@@ -881,6 +1011,28 @@ int MoleculeField::ClassifyBox(const double box[6]) const
             add(this->BinAtoms[k]);
           }
         }
+  }
+  const size_t farCount = this->Radii.size() - nearCount;
+  if (this->Settings.Mode == MoleculeMode::Global && farCount > 0 && nearDistance > 0)
+  {
+    // P = P_near · P_far with P_far >= d^(2·far) > 0: decided only where P_near alone
+    // decides, or P_near > 0 and its minimum times that bound exceeds the level.
+    double logMin = 2.0 * static_cast<double>(farCount) * std::log(nearDistance);
+    int sign = 1;
+    for (const Interval& v : enclosures)
+    {
+      if (!(v.Lo <= v.Hi) || !(v.Lo > 0 || v.Hi < 0))
+      {
+        return 0; // NaN, or a factor spans zero: undecided
+      }
+      logMin += std::log(std::min(std::fabs(v.Lo), std::fabs(v.Hi)));
+      sign = v.Lo > 0 ? sign : -sign;
+    }
+    if (sign < 0)
+    {
+      return -1; // P < 0 < level
+    }
+    return logMin > std::log(this->Level) + 1e-9 ? 1 : 0;
   }
   return SignOfProductMinus(enclosures, this->Level);
 }

@@ -12,7 +12,11 @@
  *   whose centre lies within R_i + NearDistance (3 Å) of the cell's box are "near" and
  *   enter exactly; the others are "far" and enter through the second-order Taylor
  *   polynomial T of L(p) = Σ_far ln f_j(p) about the cell's centre (their f_j > 0, so
- *   the sign of the product is exactly the near atoms' sign). The remainder is bounded
+ *   the sign of the product is exactly the near atoms' sign). Two levels: far atoms
+ *   beyond R_j + 8 Å of the cell's supercell (4³ cells, 8 Å) are expanded once per
+ *   supercell about its centre (bound over the supercell, h its half-diagonal), and that
+ *   quadratic is re-centred exactly on each cell; only the atoms in between are summed
+ *   per cell, so building a cell costs the atoms within ~20 Å, not all atoms. The remainder is bounded
  *   rigorously: along a direction δ, |d³/ds³ ln f_j| <= b_j = max(4/q^(3/2),
  *   e(4e² + 12R_j²)/q³) with e the distance of c_j from the cell box and q = e² − R_j²,
  *   so |L − T| <= B = (h³/6)·Σ_far b_j with h the cell's half-diagonal. Where the
@@ -20,7 +24,10 @@
  *   the point is evaluated exactly over all atoms, so the sign of F is always exact, the
  *   surface (and every vertex found by root finding) is the exact one, and values away
  *   from the surface have a relative error below e^B − 1. Cost per point: the near
- *   atoms (about 30 in a protein), plus, once per cell, O(atoms) for the far sums.
+ *   atoms (about 30 to 60 in a protein); per cell, the atoms within ~20 Å; per supercell
+ *   (64 cells), all atoms. ClassifyBox uses only the atoms within R + NearDistance of
+ *   the box (every other factor is at least NearDistance²). A vertex usually costs one
+ *   pass over its cell's near atoms (FirstRoot).
  *   The product is accumulated with a separate binary exponent: 10^5 factors do not
  *   overflow.
  *
@@ -127,7 +134,12 @@ public:
 
 private:
   struct Cell;
+  struct Expansion;
+  struct Super;
   const Cell* CellAt(const double p[3]) const;
+  const Super& SuperAt(const int cell[3]) const;
+  void AddFar(const std::vector<int>& atoms, const double centre[3], const double box[6],
+    double h, Expansion& out) const;
   void BuildCell(long id, Cell& cell) const;
   // The factor of atom i at p (f_i or the Local g_i) and, if g is not null, its gradient.
   double AtomFactor(size_t i, const double p[3], double* g) const;
@@ -154,6 +166,9 @@ private:
   std::vector<int> BinStart, BinAtoms; // atoms by cell (CSR)
   mutable std::vector<Cell> Cells;
   std::unique_ptr<std::once_flag[]> Once;
+  int SuperDims[3] = { 0, 0, 0 };
+  mutable std::vector<Super> Supers;
+  std::unique_ptr<std::once_flag[]> SuperOnce;
   mutable std::atomic<double> MaxBound{ 0.0 };
   mutable std::atomic<long long> ExactCount{ 0 };
 };
