@@ -5,15 +5,13 @@ from chemical-structures-data) and one protein (ubiquitin, 1ubq, from freesasa's
 
     pvbatch molecule_gallery.py OUT_DIR        (./run demo does this)
 """
-import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from molecule_benchmark import splat  # noqa: E402  (the same Sigma pipeline)
 from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
-from vtkmodules.vtkCommonCore import vtkLookupTable, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
-from vtkmodules.vtkImagingHybrid import vtkGaussianSplatter
+from vtkmodules.vtkCommonCore import vtkLookupTable
 from vtkmodules.vtkIOChemistry import vtkCMLMoleculeReader
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
@@ -27,42 +25,14 @@ from vtkmodules.vtkRenderingCore import (
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
 
-# exp(-5 d^2 / 3.5^2) = 0.3 at d = 1.72 A: a lone atom gets about a carbon's vdW radius.
-LEVEL = 0.3
-
 # CPK-like colours by atomic number (H white, C grey, N blue, O red, S yellow).
 CPK = {1: (0.95, 0.95, 0.95), 6: (0.55, 0.55, 0.55), 7: (0.2, 0.35, 0.95),
        8: (0.9, 0.15, 0.1), 9: (0.5, 0.9, 0.3), 16: (0.95, 0.85, 0.2), 17: (0.2, 0.85, 0.2)}
 
 
 def sigma_surface(molecule, spacing):
-    """Gaussians of 3.5 A footprint at the atoms, summed, contoured at LEVEL."""
-    points = vtkPoints()
-    for i in range(molecule.GetNumberOfAtoms()):
-        points.InsertNextPoint(molecule.GetAtom(i).GetPosition())
-    cloud = vtkPolyData()
-    cloud.SetPoints(points)
-    b = list(points.GetBounds())
-    for a in range(3):
-        b[2 * a] -= 4.0
-        b[2 * a + 1] += 4.0
-    splat = vtkGaussianSplatter()
-    splat.SetInputData(cloud)
-    splat.SetModelBounds(b)
-    splat.SetSampleDimensions([int(math.ceil((b[2 * a + 1] - b[2 * a]) / spacing)) + 1
-                               for a in range(3)])
-    splat.SetRadius(3.5 / max(b[1] - b[0], b[3] - b[2], b[5] - b[4]))
-    splat.SetExponentFactor(-5.0)
-    splat.ScalarWarpingOff()
-    splat.NormalWarpingOff()
-    splat.CappingOff()
-    splat.SetAccumulationModeToSum()  # Blinn: the sum of the Gaussians
-    contour = vtkFlyingEdges3D()
-    contour.SetInputConnection(splat.GetOutputPort())
-    contour.SetValue(0, LEVEL)
-    contour.ComputeNormalsOn()
-    contour.Update()
-    return contour.GetOutput()
+    """Blinn's Sigma-surface as the benchmark builds it (summed Gaussians + FE)."""
+    return splat(molecule, spacing, 'gaussian')[1]
 
 
 def pi_surface(molecule, mode, spacing):

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 namespace pisurf
@@ -358,6 +359,38 @@ const MoleculeField::Cell* MoleculeField::CellAt(const double p[3]) const
   return &cell;
 }
 
+template <class Visit>
+bool MoleculeField::ForAtomsNear(const double box[6], double margin, Visit&& visit) const
+{
+  const double s = this->Settings.CellSize;
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double t0 = std::floor((box[2 * a] - margin - this->Origin[a]) / s);
+    const double t1 = std::floor((box[2 * a + 1] + margin - this->Origin[a]) / s);
+    if (!(t1 >= 0 && t0 < this->Dims[a]))
+    {
+      return false; // beyond every bin
+    }
+    lo[a] = static_cast<int>(std::max(0.0, t0));
+    hi[a] = static_cast<int>(std::min<double>(this->Dims[a] - 1, t1));
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
+      {
+        const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
+        for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
+        {
+          if (visit(this->BinAtoms[k]))
+          {
+            return true;
+          }
+        }
+      }
+  return false;
+}
+
 void MoleculeField::BuildCell(long id, Cell& cell) const
 {
   const double s = this->Settings.CellSize;
@@ -370,29 +403,15 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
     box[2 * a + 1] = box[2 * a] + s;
     cell.Center[a] = box[2 * a] + 0.5 * s;
   }
-  // Near atoms: from the bins within MaxReach of the box.
-  const int reach = static_cast<int>(std::ceil(this->MaxReach / s));
-  int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = std::max(0, c[a] - reach);
-    hi[a] = std::min(this->Dims[a] - 1, c[a] + reach);
-  }
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x)
-      {
-        const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
-        for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
-        {
-          const int i = this->BinAtoms[k];
-          const double R = this->Reach(i);
-          if (Distance2ToBox(&this->Centers[3 * i], box) < R * R)
-          {
-            cell.Near.push_back(i);
-          }
-        }
-      }
+  // Near atoms: within their reach of the box.
+  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
+    const double R = this->Reach(i);
+    if (Distance2ToBox(&this->Centers[3 * i], box) < R * R)
+    {
+      cell.Near.push_back(i);
+    }
+    return false;
+  });
   std::sort(cell.Near.begin(), cell.Near.end());
   if (this->Settings.Mode == MoleculeMode::Local)
   {
@@ -401,47 +420,18 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   // Far atoms. Those beyond R_j + SuperNear of the cell's supercell come through the
   // supercell's expansion (built once for 4³ cells); the others ("mid") are summed here.
   const Super& super = this->SuperAt(c);
-  std::vector<char> isMid;
-  std::vector<int> mid;
-  {
-    const int superReach =
-      static_cast<int>(std::ceil((this->MaxRadius + SuperNear + SuperCells * s) / s));
-    int mlo[3], mhi[3];
-    for (int a = 0; a < 3; ++a)
+  std::vector<int> mid, candidates;
+  this->ForAtomsNear(super.Box, this->MaxRadius + SuperNear, [&](int i) {
+    const double reach = this->Radii[i] + SuperNear;
+    if (Distance2ToBox(&this->Centers[3 * i], super.Box) < reach * reach)
     {
-      mlo[a] = std::max(0, c[a] - superReach);
-      mhi[a] = std::min(this->Dims[a] - 1, c[a] + superReach);
+      candidates.push_back(i); // not in the supercell's outer set
     }
-    size_t next = 0;
-    std::vector<int> candidates;
-    for (int z = mlo[2]; z <= mhi[2]; ++z)
-      for (int y = mlo[1]; y <= mhi[1]; ++y)
-        for (int x = mlo[0]; x <= mhi[0]; ++x)
-        {
-          const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
-          for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
-          {
-            candidates.push_back(this->BinAtoms[k]);
-          }
-        }
-    std::sort(candidates.begin(), candidates.end());
-    for (int i : candidates)
-    {
-      while (next < cell.Near.size() && cell.Near[next] < i)
-      {
-        ++next;
-      }
-      if (next < cell.Near.size() && cell.Near[next] == i)
-      {
-        continue;
-      }
-      const double reach = this->Radii[i] + SuperNear;
-      if (Distance2ToBox(&this->Centers[3 * i], super.Box) < reach * reach)
-      {
-        mid.push_back(i); // not near, not in the supercell's outer set
-      }
-    }
-  }
+    return false;
+  });
+  std::sort(candidates.begin(), candidates.end());
+  std::set_difference(candidates.begin(), candidates.end(), cell.Near.begin(), cell.Near.end(),
+    std::back_inserter(mid));
   const double h = 0.5 * std::sqrt(3.0) * s;
   Expansion local;
   AddFar(mid, cell.Center, box, h, local);
@@ -808,39 +798,14 @@ bool MoleculeField::OffOuterSide(const double p[3]) const
   {
     return false; // F = −level >= 0 on the spheres: the argument does not hold
   }
-  // The atoms binned by centre within the largest radius of p (no cell is built: in
-  // Global mode that costs a pass over all atoms).
-  const double s = this->Settings.CellSize;
-  const double maxRadius = this->MaxRadius;
-  int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const double t0 = std::floor((p[a] - maxRadius - this->Origin[a]) / s);
-    const double t1 = std::floor((p[a] + maxRadius - this->Origin[a]) / s);
-    if (!(t1 >= 0 && t0 < this->Dims[a]))
-    {
-      return false; // beyond every atom
-    }
-    lo[a] = static_cast<int>(std::max(0.0, t0));
-    hi[a] = static_cast<int>(std::min<double>(this->Dims[a] - 1, t1));
-  }
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x)
-      {
-        const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
-        for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
-        {
-          const int i = this->BinAtoms[k];
-          const double* c = &this->Centers[3 * i];
-          const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
-          if (dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i])
-          {
-            return true;
-          }
-        }
-      }
-  return false;
+  // The atoms binned within the largest radius of p (no cell is built: in Global mode
+  // that costs a pass over all atoms).
+  const double point[6] = { p[0], p[0], p[1], p[1], p[2], p[2] };
+  return this->ForAtomsNear(point, this->MaxRadius, [&](int i) {
+    const double* c = &this->Centers[3 * i];
+    const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+    return dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i];
+  });
 }
 
 void MoleculeField::EvaluateVertex(
@@ -989,29 +954,12 @@ int MoleculeField::ClassifyBox(const double box[6]) const
     // g lies between f and 1 (g = f where f < 0).
     enclosures.push_back({ std::min(fmin, 1.0), std::max(fmax, 1.0) });
   };
-  {
-    // The atoms binned within MaxReach (R + NearDistance or R + InfluenceRadius at most)
-    // of the box: every atom that enters exactly.
-    const double s = this->Settings.CellSize;
-    int lo[3], hi[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::max(0,
-        static_cast<int>(std::floor((box[2 * a] - this->MaxReach - this->Origin[a]) / s)));
-      hi[a] = std::min(this->Dims[a] - 1,
-        static_cast<int>(std::floor((box[2 * a + 1] + this->MaxReach - this->Origin[a]) / s)));
-    }
-    for (int z = lo[2]; z <= hi[2]; ++z)
-      for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int x = lo[0]; x <= hi[0]; ++x)
-        {
-          const int bin = (z * this->Dims[1] + y) * this->Dims[0] + x;
-          for (int k = this->BinStart[bin]; k < this->BinStart[bin + 1]; ++k)
-          {
-            add(this->BinAtoms[k]);
-          }
-        }
-  }
+  // The atoms binned within MaxReach (R + NearDistance or R + InfluenceRadius at most)
+  // of the box: every atom that enters exactly.
+  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
+    add(static_cast<size_t>(i));
+    return false;
+  });
   const size_t farCount = this->Radii.size() - nearCount;
   if (this->Settings.Mode == MoleculeMode::Global && farCount > 0 && nearDistance > 0)
   {

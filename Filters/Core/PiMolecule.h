@@ -137,6 +137,10 @@ private:
   struct Expansion;
   struct Super;
   const Cell* CellAt(const double p[3]) const;
+  // Calls visit(i) for each atom whose centre's bin lies within `margin` of the box,
+  // until visit returns true; returns whether it did.
+  template <class Visit>
+  bool ForAtomsNear(const double box[6], double margin, Visit&& visit) const;
   const Super& SuperAt(const int cell[3]) const;
   void AddFar(const std::vector<int>& atoms, const double centre[3], const double box[6],
     double h, Expansion& out) const;
