@@ -170,8 +170,12 @@ public:
     switch (this->ProxyKind)
     {
       case Kind::Sphere:
+        // The radius after the centre, each pushed: with its handle shown, a sphere
+        // widget whose centre moves keeps the handle and takes the radius from it.
         Set3(widget, "Center", spec.Center);
         vtkSMPropertyHelper(widget, "Radius").Set(spec.Radius);
+        widget->UpdateProperty("Center", 1);
+        widget->UpdateProperty("Radius", 1);
         break;
       case Kind::Box:
         Set3(widget, "Position", spec.Center);

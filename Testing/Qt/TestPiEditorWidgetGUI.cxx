@@ -5,7 +5,8 @@
 // The selected row gets ParaView's sphere widget (found in the view's
 // HiddenRepresentations, not through the editor's API) at the row's centre and radius;
 // a move of the widget (its proxy changed and its VTK widget's interaction events fired,
-// then a real mouse drag through the view's interactor) edits the row and, on Apply, the
+// then real mouse drags through the view's interactor: the left button moves the sphere,
+// the right button scales it) edits the row and, on Apply, the
 // Model JSON; a typed radius moves the widget; another row, an ellipsoid (box widget), a
 // torus (handle), the "Show 3D widget" checkbox, the hidden panel and a destroyed view
 // all do what the editor's documentation says.
@@ -19,6 +20,7 @@
 #include "pqServer.h"
 #include "pqServerResource.h"
 #include "vtkAbstractWidget.h"
+#include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkRenderWindowInteractor.h"
@@ -317,6 +319,26 @@ int main(int argc, char* argv[])
       Near(model.Primitives[0].Radius, 1.25),
     "the drag moved the sphere to x = 1.5 in the Model: " << ModelText(proxy));
 
+  // A real right-button drag upwards on the sphere scales it: the radius grows.
+  const double dragged[3] = { center[0], center[1], center[2] };
+  ToDisplay(renderer, dragged[0], dragged[1], dragged[2], from);
+  interactor->SetEventInformation(from[0], from[1]);
+  interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+  interactor->InvokeEvent(vtkCommand::RightButtonPressEvent);
+  for (int step = 1; step <= 5; ++step)
+  {
+    interactor->SetEventInformation(from[0], from[1] + 12 * step);
+    interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+  }
+  interactor->InvokeEvent(vtkCommand::RightButtonReleaseEvent);
+  SpherePlacement(sphere, center, radius);
+  std::cerr << "after the scaling drag: centre " << Str3(center) << ", radius " << radius << "\n";
+  apply();
+  CHECK(Parse(proxy, model) && model.Primitives[0].Radius > 1.3 &&
+      Near(model.Primitives[0].Radius, radius, 1e-6) &&
+      Near3(model.Primitives[0].Center, dragged[0], dragged[1], dragged[2], 1e-6),
+    "the right-button drag grew the radius, the centre stays: " << ModelText(proxy));
+
   // Another row: the widget moves to it.
   table->selectRow(1);
   SpherePlacement(sphere, center, radius);
@@ -352,9 +374,16 @@ int main(int argc, char* argv[])
     CHECK(Near3(model.Primitives[1].Center, -0.9, 0, 0, 0),
       "the centre stays -0.9 exactly: " << ModelText(proxy));
   }
+  // The picture for the README: the editor and the box widget on the ellipsoid, seen
+  // from above the x-z plane.
+  vtkCamera* camera = renderViewProxy->GetActiveCamera();
+  camera->Azimuth(30);
+  camera->Elevation(25);
+  renderViewProxy->SynchronizeCameraProperties();
   view->resetCamera();
+  camera->Zoom(0.85); // the box reaches beyond the data
+  renderViewProxy->SynchronizeCameraProperties();
   view->forceRender();
-  // The picture for the README: the editor and the box widget on the ellipsoid.
   QCoreApplication::processEvents();
   window.grab().save(QString(argv[2]) + "/PiEditorWidget.png");
 
