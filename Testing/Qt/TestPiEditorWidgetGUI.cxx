@@ -8,8 +8,8 @@
 // then real mouse drags through the view's interactor: the left button moves the sphere,
 // the right button scales it) edits the row and, on Apply, the
 // Model JSON; a typed radius moves the widget; another row, an ellipsoid (box widget), a
-// torus (handle), the "Show 3D widget" checkbox, the hidden panel and a destroyed view
-// all do what the editor's documentation says.
+// torus (handle), the "Show 3D widget" checkbox, the hidden panel, a change of the
+// property from outside and a destroyed view all do what the editor's documentation says.
 #include "PiModel.h"
 
 #include "pqApplicationCore.h"
@@ -32,6 +32,7 @@
 #include "vtkSMProxyManager.h"
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMViewProxy.h"
 
 #include <QApplication>
 #include <QCheckBox>
@@ -205,8 +206,9 @@ int main(int argc, char* argv[])
   vtkSMPropertyHelper(proxy, "Resolution").Set(48);
   proxy->UpdateVTKObjects();
   vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
-  controller->Show(vtkSMSourceProxy::SafeDownCast(proxy), 0, vtkSMViewProxy::SafeDownCast(viewProxy));
-  controller->Show(vtkSMSourceProxy::SafeDownCast(proxy), 1, vtkSMViewProxy::SafeDownCast(viewProxy));
+  auto* sourceProxy = vtkSMSourceProxy::SafeDownCast(proxy);
+  controller->Show(sourceProxy, 0, vtkSMViewProxy::SafeDownCast(viewProxy));
+  controller->Show(sourceProxy, 1, vtkSMViewProxy::SafeDownCast(viewProxy));
 
   auto* panel = new pqProxyWidget(proxy, &window);
   panel->setApplyChangesImmediately(false);
@@ -267,8 +269,8 @@ int main(int argc, char* argv[])
       Find<QLineEdit>(panel, "PiParameter_Center_1")->text() == "0.25",
     "the centre fields follow during the drag");
   sphere->GetWidget()->InvokeEvent(vtkCommand::EndInteractionEvent);
-  CHECK(Find<QLineEdit>(panel, "PiParameter_Radius")->text() == "0.75",
-    "the radius field follows: " << Find<QLineEdit>(panel, "PiParameter_Radius")->text().toStdString());
+  const QString radiusText = Find<QLineEdit>(panel, "PiParameter_Radius")->text();
+  CHECK(radiusText == "0.75", "the radius field follows: " << radiusText.toStdString());
   CHECK(ModelText(proxy) == before, "the Model waits for Apply");
   apply();
   pisurf::Model model;
@@ -414,13 +416,29 @@ int main(int argc, char* argv[])
   panel->show();
   CHECK(handle && Shown(handle), "a shown panel shows it again");
 
+  // A change of the property from outside (Python, undo, a state file) moves the widget.
+  vtkSMPropertyHelper(proxy, "Model")
+    .Set(R"({"pisurf": 1, "blending": 0.1,
+            "primitives": [{"type": "sphere", "center": [2, 0, 0], "radius": 0.5}]})");
+  proxy->UpdateVTKObjects();
+  QCoreApplication::processEvents();
+  sphere = FindWidget(viewProxy, "SphereWidgetRepresentation");
+  CHECK(sphere && Shown(sphere) && CountWidgets(viewProxy) == 1,
+    "the new model's sphere has the sphere widget");
+  if (sphere)
+  {
+    SpherePlacement(sphere, center, radius);
+    CHECK(Near3(center, 2, 0, 0) && Near(radius, 0.5),
+      "the widget follows the property: " << Str3(center) << ", " << radius);
+  }
+
   // The view goes: the widget leaves it, the editor keeps working.
   builder->destroy(view);
   QCoreApplication::processEvents();
   CHECK(!liveView, "the view is gone");
-  Type(Find<QLineEdit>(panel, "PiParameter_MajorRadius"), "1.5");
+  Type(Find<QLineEdit>(panel, "PiParameter_Radius"), "0.75");
   apply();
-  CHECK(Parse(proxy, model) && Near(model.Primitives[1].MajorRadius, 1.5),
+  CHECK(Parse(proxy, model) && Near(model.Primitives[0].Radius, 0.75),
     "the editor works without a view: " << ModelText(proxy));
 
   window.hide();
