@@ -9,7 +9,8 @@
 // the right button scales it) edits the row and, on Apply, the
 // Model JSON; a typed radius moves the widget; another row, an ellipsoid (box widget), a
 // torus (handle), the "Show 3D widget" checkbox, the hidden panel, a change of the
-// property from outside and a destroyed view all do what the editor's documentation says.
+// property from outside, a destroyed view, another view and a deleted editor all do what
+// the editor's documentation says.
 #include "PiModel.h"
 
 #include "pqApplicationCore.h"
@@ -441,8 +442,16 @@ int main(int argc, char* argv[])
   CHECK(Parse(proxy, model) && Near(model.Primitives[0].Radius, 0.75),
     "the editor works without a view: " << ModelText(proxy));
 
+  // Another view gets the widget; a deleted editor (its source deleted, say) takes it out.
+  auto* other = qobject_cast<pqRenderView*>(builder->createView("RenderView", server));
+  panel->setView(other);
+  sphere = FindWidget(other->getProxy(), "SphereWidgetRepresentation");
+  CHECK(sphere && Shown(sphere) && CountWidgets(other->getProxy()) == 1,
+    "the new view gets the sphere widget");
   window.hide();
   delete panel;
+  CHECK(CountWidgets(other->getProxy()) == 0, "a deleted editor leaves no widget in the view");
+  builder->destroy(other);
   builder->destroy(source);
   builder->removeServer(server);
   std::cerr << (Failures ? "FAILED" : "passed") << " (" << Failures << " failures)\n";
