@@ -2,7 +2,9 @@
 #include "pqPiPrimitiveListWidget.h"
 
 #include "PiModel.h"
+#include "pqPiPrimitive3DWidget.h"
 
+#include "pqView.h"
 #include "vtkSMProperty.h"
 #include "vtkSMProxy.h"
 #include "vtkSetGet.h"
@@ -292,6 +294,8 @@ public:
   QPushButton* Duplicate = nullptr;
   QPushButton* Up = nullptr;
   QPushButton* Down = nullptr;
+  QCheckBox* ShowWidget = nullptr;
+  pqPiPrimitive3DWidget* Widget3D = nullptr; // the selected row's widget in the view
   QLabel* ParametersTitle = nullptr;
   QVBoxLayout* ParametersLayout = nullptr;
   QPointer<QWidget> Parameters; // the selected row's fields, rebuilt with the row
@@ -394,6 +398,38 @@ public:
     this->Blending->setToolTip(QString());
     this->ModelText->setPlainText(this->Text);
     this->rebuildParameters();
+    this->syncWidget();
+  }
+
+  /// The 3D widget follows the selected row, the view, the panel and the checkbox.
+  void syncWidget()
+  {
+    const PrimitiveSpec* spec = this->Row >= 0 ? &this->Model.Primitives[this->Row] : nullptr;
+    this->Widget3D->show(
+      spec, this->Self->view(), this->Self->isSelected() && this->ShowWidget->isChecked());
+  }
+
+  /// Takes the widget's placement into the selected row (validated like any edit). A
+  /// refused placement (a zero radius) snaps the widget back to the row.
+  void takeWidgetPlacement()
+  {
+    if (this->Row < 0)
+    {
+      return;
+    }
+    pisurf::Model candidate = this->Model;
+    if (!this->Widget3D->readPrimitive(candidate.Primitives[this->Row]))
+    {
+      return;
+    }
+    if (pisurf::WriteModel(candidate) == this->Text.toStdString())
+    {
+      return;
+    }
+    if (!this->commit(candidate, this->Row, nullptr) && !this->Widget3D->isInteracting())
+    {
+      this->syncWidget();
+    }
   }
 
   /// A new parameter panel for the selected row (the fields differ between types).
@@ -562,6 +598,22 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
     internals.Down, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::movePrimitiveDown);
   layout->addLayout(buttons);
 
+  internals.ShowWidget = new QCheckBox(tr("Show 3D widget"), this);
+  internals.ShowWidget->setObjectName("PiShowWidget");
+  internals.ShowWidget->setChecked(true);
+  internals.ShowWidget->setToolTip(
+    tr("Place the selected primitive in the render view: a sphere widget for a sphere, a "
+       "box for an ellipsoid or superellipsoid (its semi-axes), a handle at the centre of "
+       "any other primitive. Dragging it edits the row."));
+  layout->addWidget(internals.ShowWidget);
+  internals.Widget3D = new pqPiPrimitive3DWidget(smproxy->GetSessionProxyManager(), this);
+  QObject::connect(
+    internals.ShowWidget, &QCheckBox::toggled, this, [this]() { this->Internals->syncWidget(); });
+  QObject::connect(internals.Widget3D, &pqPiPrimitive3DWidget::interaction, this,
+    &pqPiPrimitiveListWidget::onWidgetMoved);
+  QObject::connect(internals.Widget3D, &pqPiPrimitive3DWidget::endInteraction, this,
+    &pqPiPrimitiveListWidget::onWidgetMoved);
+
   internals.ParametersTitle = new QLabel(this);
   internals.ParametersTitle->setObjectName("PiParametersTitle");
   QFont bold = internals.ParametersTitle->font();
@@ -627,6 +679,33 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
 
 //-----------------------------------------------------------------------------
 pqPiPrimitiveListWidget::~pqPiPrimitiveListWidget() = default;
+
+//-----------------------------------------------------------------------------
+void pqPiPrimitiveListWidget::select()
+{
+  this->Superclass::select();
+  this->Internals->syncWidget();
+}
+
+//-----------------------------------------------------------------------------
+void pqPiPrimitiveListWidget::deselect()
+{
+  this->Superclass::deselect();
+  this->Internals->syncWidget();
+}
+
+//-----------------------------------------------------------------------------
+void pqPiPrimitiveListWidget::setView(pqView* view)
+{
+  this->Superclass::setView(view);
+  this->Internals->syncWidget();
+}
+
+//-----------------------------------------------------------------------------
+void pqPiPrimitiveListWidget::onWidgetMoved()
+{
+  this->Internals->takeWidgetPlacement();
+}
 
 //-----------------------------------------------------------------------------
 QString pqPiPrimitiveListWidget::modelText() const

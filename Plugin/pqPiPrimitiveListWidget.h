@@ -23,10 +23,22 @@
  * for a scalar and PiParameter_<Name>_<i> for a vector component (Name as in the "Pi
  * Primitive" source: Radius, Radii, MajorRadius, MinorRadius, Exponent, Normal, Angle,
  * Expression, Center, Orientation, Axis, RotationAxis, RotationAngle, Scale, Negate,
- * Name), PiBlending, PiStatus, PiShowModelText, PiModelText and PiApplyModelText.
+ * Name), PiShowWidget, PiBlending, PiStatus, PiShowModelText, PiModelText and PiApplyModelText.
  *
- * @warning No 3D widget: the selected primitive is placed by typing its parameters (or
- * with the "Pi Primitive" source, which has ParaView's 3D widgets).
+ * The selected primitive also gets one of ParaView's 3D widgets in the active render
+ * view (pqPiPrimitive3DWidget): a sphere widget for a sphere (centre and radius), a box
+ * for an ellipsoid or superellipsoid in the default orientation (centre and semi-axes),
+ * a handle at the centre of any other primitive. Dragging it edits the row through the
+ * same validation as typing (InteractionEvent and EndInteractionEvent), and a typed edit,
+ * a new selection or a change of the property moves the widget. The widget shows while
+ * the panel is selected (pqPropertyWidget::select/deselect), a render view is the panel's
+ * view and the "Show 3D widget" checkbox (PiShowWidget) is on; it leaves the view when
+ * the view goes away. Like the editor's other edits, a drag changes the Model on Apply
+ * (at once with auto-apply).
+ *
+ * @warning The widgets place the centre and the radius or semi-axes only; orientation,
+ * a torus's radii, a cone's angle and the rest are typed. A rotated ellipsoid gets the
+ * handle (ParaView's box widget would show an axis-aligned box).
  *
  * @sa pisurf::ParseModel, pisurf::WriteModel, vtkPiSurfaceSource
  */
@@ -39,6 +51,7 @@
 #include <QString>
 
 class QWidget;
+class pqView;
 class vtkSMProperty;
 class vtkSMProxy;
 
@@ -57,6 +70,12 @@ public:
 
   void updateWidget(bool showingAdvancedProperties) override;
 
+  ///@{
+  /// The panel is shown or hidden: the 3D widget shows or hides with it.
+  void select() override;
+  void deselect() override;
+  ///@}
+
 Q_SIGNALS:
   /// Fired after an accepted edit, with canonical JSON in modelText().
   void modelTextChanged();
@@ -65,6 +84,9 @@ public Q_SLOTS: // NOLINT(readability-redundant-access-specifiers)
   /// Shows the model of `text` (from the property). Invalid text is kept as is and
   /// reported; the table then shows the last valid model.
   void setModelText(const QString& text);
+
+  /// The view that gets the 3D widget (the panel's active view).
+  void setView(pqView* view) override;
 
 private Q_SLOTS:
   void onCurrentRowChanged();
@@ -80,6 +102,7 @@ private Q_SLOTS:
   void movePrimitiveUp();
   void movePrimitiveDown();
   void applyModelText();
+  void onWidgetMoved();
 
 private:
   pqPiPrimitiveListWidget(const pqPiPrimitiveListWidget&) = delete;
