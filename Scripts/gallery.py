@@ -138,7 +138,8 @@ def main(models, out):
                     "<br>%s<br><i>%d triangles</i></figcaption></figure>"
                     % (png, html.escape(title), html.escape(title), html.escape(equation),
                        html.escape(description), triangles))
-        f.write("</div></body></html>\n")
+        f.write("</div><p><a href='molecules.html'>Molecules: Blinn's Σ-surface against the "
+                "Π-surfaces</a> (written by molecule_gallery.py)</p></body></html>\n")
     return 0 if len(cards) == len(figures) else 1
 
 

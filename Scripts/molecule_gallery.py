@@ -127,6 +127,20 @@ def main(out):
     figure(os.path.join(out, 'molecule_1ubq_closeup.png'),
            [(pi_surface(protein, 0, 0.25), 'Pi, Global (r = 1)'),
             (pi_surface(protein, 1, 0.25), 'Pi, Local (2 A)')], (1000, 500), zoom=3.5)
+    with open(os.path.join(out, 'molecules.html'), 'w') as f:
+        f.write("<!DOCTYPE html><html><head><meta charset='utf-8'><title>PiSurfaces: molecules"
+                "</title><style>body{font-family:sans-serif;margin:2em}img{max-width:100%}"
+                "</style></head><body><h1>Σ versus Π on real molecules</h1>"
+                "<p>Blinn's Σ-surface (Gaussians summed by vtkGaussianSplatter, contoured by "
+                "vtkFlyingEdges3D) beside the molecular Π-surfaces: Global, the paper's product "
+                "over all atoms (r = 1), and Local, whose factors reach 2 Å beyond each "
+                "sphere. Coloured by element.</p>"
+                "<h2>Diazepam</h2><img src='molecule_diazepam.png'>"
+                "<h2>Ubiquitin (1ubq)</h2><img src='molecule_1ubq.png'>"
+                "<h2>Ubiquitin close up: Global creases, Local fillets</h2>"
+                "<img src='molecule_1ubq_closeup.png'>"
+                "<p><a href='index.html'>The paper's figures</a></p></body></html>\n")
+    print('wrote', os.path.join(out, 'molecules.html'))
 
 
 if __name__ == '__main__':
