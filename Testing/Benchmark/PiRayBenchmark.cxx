@@ -165,6 +165,12 @@ int main(int argc, char* argv[])
     quick ? "" : "---|---|---|");
   for (const char* backend : { "Sequential", "STDThread" })
   {
+    // PIRAY_BENCH_BACKEND=Sequential runs only that backend.
+    const char* onlyBackend = std::getenv("PIRAY_BENCH_BACKEND");
+    if (onlyBackend && std::string(onlyBackend) != backend)
+    {
+      continue;
+    }
     vtkSMPTools::SetBackend(backend);
     if (!quick)
     {
@@ -181,6 +187,12 @@ int main(int argc, char* argv[])
     }
     for (const char* name : { "cup_a1.0", "table" })
     {
+      // PIRAY_BENCH_MODELS=cup_a1.0 runs only the models it names.
+      const char* only = std::getenv("PIRAY_BENCH_MODELS");
+      if (only && std::string(only).find(name) == std::string::npos)
+      {
+        continue;
+      }
       vtkNew<vtkPiSurface> model;
       model->LoadModel((models + "/" + name + ".pisurf").c_str());
       Run(name, model, n);
