@@ -30,6 +30,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiRayCaster);
@@ -91,10 +92,12 @@ struct CastRows
   double Tolerance;
   std::vector<std::vector<Hit>>* Rows; // per (view, j)
   const pisurf::RayCaster* Caster;
+  const std::vector<std::unique_ptr<pisurf::RayGrid>>* Grids; // per view; null: per ray
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
 
-  void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out) const
+  void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out,
+    const pisurf::RayGrid* grid = nullptr, const std::vector<double>* row = nullptr) const
   {
     double o[3], d[3];
     double t0 = 0, t1 = v.Length;
@@ -116,12 +119,34 @@ struct CastRows
     {
       return;
     }
-    // Restrict about the entry point: t' = t − t0.
-    const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
     thread_local std::vector<pisurf::RayRoot> roots;
     pisurf::RayRootOptions options;
     options.Tolerance = this->Tolerance;
     options.AllRoots = this->AllHits;
+    if (grid)
+    {
+      // Orthographic: the factors restricted from the row's coefficients, in the grid's
+      // parameter s = t − h (t from the view plane).
+      thread_local std::vector<double> coefficients;
+      coefficients.resize(this->Caster->GetLineCoefficientCount());
+      grid->Restrict(*row, i, coefficients.data());
+      const double h = grid->GetHalfLength();
+      this->Caster->CastRestricted(coefficients.data(), t0 - h, t1 - h, options, roots);
+      int index = 0;
+      for (const pisurf::RayRoot& r : roots)
+      {
+        const double t = r.T + h;
+        Hit hit{ i, j, viewIndex, index++, t, r.Tangent, {} };
+        for (int k = 0; k < 3; ++k)
+        {
+          hit.P[k] = o[k] + t * d[k];
+        }
+        out.push_back(hit);
+      }
+      return;
+    }
+    // Restrict about the entry point: t' = t − t0.
+    const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
     this->Caster->Cast(start, d, t1 - t0, options, roots);
     int index = 0;
     for (const pisurf::RayRoot& r : roots)
@@ -158,9 +183,15 @@ struct CastRows
       }
       const View& v = (*this->Views)[vi];
       std::vector<Hit>& out = (*this->Rows)[row];
+      const pisurf::RayGrid* grid = (*this->Grids)[vi].get();
+      thread_local std::vector<double> rowCoefficients;
+      if (grid)
+      {
+        grid->SetRow(static_cast<int>(r), rowCoefficients);
+      }
       for (int i = 0; i < v.W; ++i)
       {
-        this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out);
+        this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out, grid, &rowCoefficients);
       }
     }
   }
@@ -393,7 +424,34 @@ int vtkPiRayCaster::RequestData(
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
   const pisurf::RayCaster caster(*kernel);
-  CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, this, &abort };
+  // Orthographic views of polynomial products restrict their rays from per-view
+  // compositions (pisurf::RayGrid), about the middle of the box along the view.
+  std::vector<std::unique_ptr<pisurf::RayGrid>> grids(views.size());
+  if (kernel->IsPolynomial())
+  {
+    for (size_t k = 0; k < views.size(); ++k)
+    {
+      const View& v = views[k];
+      if (v.Perspective)
+      {
+        continue;
+      }
+      double d[3] = { v.D[0], v.D[1], v.D[2] };
+      vtkMath::Normalize(d);
+      double length = v.Length;
+      if (!v.Axis)
+      {
+        // Twice the distance from the view plane to the box centre along the rays.
+        length = 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          length += 2.0 * (0.5 * (b[2 * c] + b[2 * c + 1]) - v.O[c]) * d[c];
+        }
+      }
+      grids[k] = std::make_unique<pisurf::RayGrid>(*kernel, v.O, v.U, v.V, d, v.W, v.H, length);
+    }
+  }
+  CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, this, &abort };
   vtkSMPTools::For(0, rowCount, cast);
   if (abort || this->CheckAbort())
   {
