@@ -29,6 +29,9 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -257,6 +260,18 @@ void vtkPiRayCaster::ReportReferences(vtkGarbageCollector* collector)
 int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // PISURF_TIMING=1: the process CPU time of each pass on stderr.
+  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
+  std::clock_t clock = std::clock();
+  auto lap = [&](const char* what) {
+    if (timing)
+    {
+      const std::clock_t now = std::clock();
+      std::cerr << "vtkPiRayCaster " << what << ": " << double(now - clock) / CLOCKS_PER_SEC
+                << " s CPU\n";
+      clock = now;
+    }
+  };
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
@@ -452,7 +467,9 @@ int vtkPiRayCaster::RequestData(
     }
   }
   CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, this, &abort };
+  lap("setup");
   vtkSMPTools::For(0, rowCount, cast);
+  lap("roots");
   if (abort || this->CheckAbort())
   {
     return 1;
@@ -522,6 +539,7 @@ int vtkPiRayCaster::RequestData(
     }
   });
 
+  lap("attributes");
   vtkNew<vtkCellArray> verts;
   for (vtkIdType k = 0; k < n; ++k)
   {
@@ -561,10 +579,12 @@ int vtkPiRayCaster::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
+  lap("output");
   if (image)
   {
     this->Shade(views, hits, normals, singular, image);
   }
+  lap("shading");
   if (n == 0)
   {
     vtkWarningMacro(<< "No ray hits the Pi-surface");

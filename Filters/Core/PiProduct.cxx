@@ -344,6 +344,19 @@ void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& ex
   {
     Accumulate(m, e, f.Evaluate(p));
   }
+  // The common case (the product never left ±2^256, |r| in [2^-400, 2^400] or 0):
+  // m − r directly. ScaledMinus would scale both terms by the same power of two first,
+  // keeping them normal numbers there, which changes neither the rounding nor the result.
+  const double am = std::fabs(m), ar = std::fabs(this->Blending);
+  if (e == 0 && (am == 0.0 || (am >= 0x1p-400 && am <= 0x1p400)) &&
+    (ar == 0.0 || (ar >= 0x1p-400 && ar <= 0x1p400)))
+  {
+    int ex;
+    const double F = m - this->Blending;
+    mantissa = std::frexp(F, &ex);
+    exponent = F == 0.0 ? 0 : ex;
+    return;
+  }
   ScaledMinus(m, e, this->Blending, mantissa, exponent);
 }
 

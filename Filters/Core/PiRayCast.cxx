@@ -163,18 +163,29 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
 bool RayCaster::IsSingular(
   const double p[3], double logGradient, double probe, double tolerance) const
 {
-  // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow).
-  double logProbe = -std::numeric_limits<double>::infinity();
+  // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow). The
+  // largest |F| is found on the scaled values (exponent first, then mantissa: the same
+  // order as their logarithms), so only one logarithm is taken.
+  double bestMantissa = 0.0;
+  long bestExponent = 0;
   for (int a = 0; a < 6; ++a)
   {
     double q[3] = { p[0], p[1], p[2] };
     q[a / 2] += (a % 2 ? probe : -probe);
-    double logAbs;
-    if (this->Kernel.EvaluateSignAndLog(q, logAbs) != 0)
+    double m;
+    long e;
+    this->Kernel.EvaluateScaled(q, m, e);
+    if (m != 0.0 &&
+      (bestMantissa == 0.0 || e > bestExponent ||
+        (e == bestExponent && std::fabs(m) > bestMantissa)))
     {
-      logProbe = std::max(logProbe, logAbs);
+      bestMantissa = std::fabs(m);
+      bestExponent = e;
     }
   }
+  const double logProbe = bestMantissa == 0.0
+    ? -std::numeric_limits<double>::infinity()
+    : std::log(bestMantissa) + static_cast<double>(bestExponent) * std::log(2.0);
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 }
