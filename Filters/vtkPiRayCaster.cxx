@@ -86,6 +86,80 @@ bool Clip(const double o[3], const double d[3], const double b[6], double& t0, d
   return t0 < t1;
 }
 
+// Empty-space skipping for axis views: the rays of a tile of TileSize × TileSize pixels
+// fill a thin prism; split along the depth into segments (by halving, down to 1/16 of
+// the length), a segment whose box the kernel's interval enclosure classifies as all
+// F > 0 or all F < 0 holds no root of any of the tile's rays. Each tile keeps the
+// parameter range from the first to the last undecided segment: its rays search only
+// there (for first and all hits alike), and a tile with none skips root finding.
+// 32 × 32 tiles and 4 halvings measured best on the cup at 1024² (smaller tiles or
+// finer segments cost more in interval enclosures than they save).
+constexpr int TileSize = 32;
+constexpr int TileLevels = 4;
+
+struct TileRange
+{
+  double Start, End; // Start > End: no root for any ray of the tile
+};
+
+struct TileClassifier
+{
+  const pisurf::ProductKernel* Kernel;
+  double Corner[4][3]; // the starts of the tile's corner rays
+  double D[3];
+
+  int Classify(double ta, double tb) const
+  {
+    double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (const auto& c : this->Corner)
+    {
+      for (const double t : { ta, tb })
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const double x = c[k] + t * this->D[k];
+          box[2 * k] = std::min(box[2 * k], x);
+          box[2 * k + 1] = std::max(box[2 * k + 1], x);
+        }
+      }
+    }
+    return this->Kernel->ClassifyBox(box);
+  }
+  // The start of the first undecided segment of [ta, tb] (+inf if none).
+  double First(double ta, double tb, int level) const
+  {
+    if (this->Classify(ta, tb) != 0)
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    if (level == TileLevels)
+    {
+      return ta;
+    }
+    const double mid = 0.5 * (ta + tb);
+    const double left = this->First(ta, mid, level + 1);
+    return left < std::numeric_limits<double>::infinity() ? left
+                                                           : this->First(mid, tb, level + 1);
+  }
+  // The end of the last undecided segment of [ta, tb] (−inf if none).
+  double Last(double ta, double tb, int level) const
+  {
+    if (this->Classify(ta, tb) != 0)
+    {
+      return -std::numeric_limits<double>::infinity();
+    }
+    if (level == TileLevels)
+    {
+      return tb;
+    }
+    const double mid = 0.5 * (ta + tb);
+    const double right = this->Last(mid, tb, level + 1);
+    return right > -std::numeric_limits<double>::infinity() ? right
+                                                             : this->Last(ta, mid, level + 1);
+  }
+};
+
 // The roots of F along one ray segment, overflow-safe and certified for polynomials.
 struct CastRows
 {
@@ -96,6 +170,7 @@ struct CastRows
   std::vector<std::vector<Hit>>* Rows; // per (view, j)
   const pisurf::RayCaster* Caster;
   const std::vector<std::unique_ptr<pisurf::RayGrid>>* Grids; // per view; null: per ray
+  const std::vector<std::vector<TileRange>>* Tiles; // per view; empty: no skipping
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
 
@@ -128,6 +203,18 @@ struct CastRows
     options.AllRoots = this->AllHits;
     if (grid)
     {
+      const std::vector<TileRange>& tiles = (*this->Tiles)[viewIndex];
+      if (!tiles.empty())
+      {
+        const TileRange& range =
+          tiles[(j / TileSize) * ((v.W + TileSize - 1) / TileSize) + i / TileSize];
+        if (range.Start > range.End)
+        {
+          return; // no root for any ray of the tile
+        }
+        t0 = std::max(t0, range.Start);
+        t1 = std::min(t1, range.End);
+      }
       // Orthographic: the factors restricted from the row's coefficients, in the grid's
       // parameter s = t − h (t from the view plane).
       thread_local std::vector<double> coefficients;
@@ -466,7 +553,51 @@ int vtkPiRayCaster::RequestData(
       grids[k] = std::make_unique<pisurf::RayGrid>(*kernel, v.O, v.U, v.V, d, v.W, v.H, length);
     }
   }
-  CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, this, &abort };
+  // Per axis view, the depth range of each tile that may hold roots.
+  std::vector<std::vector<TileRange>> tiles(views.size());
+  if (kernel->IsPolynomial())
+  {
+    for (size_t k = 0; k < views.size(); ++k)
+    {
+      const View& v = views[k];
+      if (!v.Axis)
+      {
+        continue;
+      }
+      const int tw = (v.W + TileSize - 1) / TileSize, th = (v.H + TileSize - 1) / TileSize;
+      std::vector<TileRange>& ranges = tiles[k];
+      ranges.resize(static_cast<size_t>(tw) * th);
+      vtkSMPTools::For(0, static_cast<vtkIdType>(ranges.size()), [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType id = begin; id < end; ++id)
+        {
+          const int ti = static_cast<int>(id % tw), tj = static_cast<int>(id / tw);
+          const int i0 = ti * TileSize, i1 = std::min(v.W, i0 + TileSize) - 1;
+          const int j0 = tj * TileSize, j1 = std::min(v.H, j0 + TileSize) - 1;
+          TileClassifier c;
+          c.Kernel = kernel.get();
+          const int ci[4] = { i0, i1, i0, i1 }, cj[4] = { j0, j0, j1, j1 };
+          for (int q = 0; q < 4; ++q)
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              c.Corner[q][a] = v.O[a] + ci[q] * v.U[a] + cj[q] * v.V[a];
+            }
+          }
+          for (int a = 0; a < 3; ++a)
+          {
+            c.D[a] = v.D[a];
+          }
+          const double first = c.First(0.0, v.Length, 0);
+          ranges[id] = first < std::numeric_limits<double>::infinity()
+            ? TileRange{ first, c.Last(first, v.Length, 0) }
+            : TileRange{ 1.0, 0.0 };
+        }
+      });
+    }
+  }
+  lap("tiles");
+  CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &tiles, this,
+    &abort };
   lap("setup");
   vtkSMPTools::For(0, rowCount, cast);
   lap("roots");
