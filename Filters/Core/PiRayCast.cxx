@@ -166,15 +166,22 @@ bool RayCaster::IsSingular(
   // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow). The
   // largest |F| is found on the scaled values (exponent first, then mantissa: the same
   // order as their logarithms), so only one logarithm is taken.
+  double q[18], mantissa[6];
+  long exponent[6];
+  for (int a = 0; a < 6; ++a)
+  {
+    q[3 * a] = p[0];
+    q[3 * a + 1] = p[1];
+    q[3 * a + 2] = p[2];
+    q[3 * a + a / 2] += (a % 2 ? probe : -probe);
+  }
+  this->Kernel.EvaluateScaledMany(q, 6, mantissa, exponent);
   double bestMantissa = 0.0;
   long bestExponent = 0;
   for (int a = 0; a < 6; ++a)
   {
-    double q[3] = { p[0], p[1], p[2] };
-    q[a / 2] += (a % 2 ? probe : -probe);
-    double m;
-    long e;
-    this->Kernel.EvaluateScaled(q, m, e);
+    const double m = mantissa[a];
+    const long e = exponent[a];
     if (m != 0.0 &&
       (bestMantissa == 0.0 || e > bestExponent ||
         (e == bestExponent && std::fabs(m) > bestMantissa)))
