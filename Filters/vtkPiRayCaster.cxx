@@ -599,7 +599,9 @@ int vtkPiRayCaster::RequestData(
   CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &tiles, this,
     &abort };
   lap("setup");
-  vtkSMPTools::For(0, rowCount, cast);
+  // Rows differ a lot in cost (the model covers the middle of the image): small chunks
+  // keep the threads balanced.
+  vtkSMPTools::For(0, rowCount, 8, cast);
   lap("roots");
   if (abort || this->CheckAbort())
   {
