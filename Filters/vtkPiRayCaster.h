@@ -55,8 +55,17 @@
  * headlight, Lambert plus a Phong highlight from the exact normals; singular pixels
  * red; white where the ray misses) and `Depth` (−1 where it misses).
  *
- * @warning Not yet as fast as intended: about 0.5 M first-hit rays per second on 2
- * threads (see the ray benchmark in the README).
+ * Speed (polynomial products): orthographic views (axis and parallel camera) restrict
+ * their rays from one composition of each factor per view (pisurf::RayGrid, about the
+ * grid centre and the middle of the box, which is also more accurate than restricting
+ * at the ray start); axis views skip empty space certified by tiles of 32 × 32 rays
+ * whose depth segments the kernel's interval enclosure (ClassifyBox) proves free of
+ * roots; rows are threaded with vtkSMPTools. `PISURF_TIMING=1` prints the CPU time of
+ * each pass.
+ *
+ * @warning Not yet as fast as intended: about 0.9 M first-hit rays per second per
+ * core on the cup (issue 4 asks for 6 M on 2 cores; see the ray benchmark in the
+ * README).
  *
  * @sa vtkPiSurface vtkPiFlyingEdges
  */

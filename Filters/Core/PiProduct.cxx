@@ -336,6 +336,25 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
   }
 }
 
+// F = m·2^e − r as mantissa·2^exponent, the end of EvaluateScaled.
+static void FinishScaled(double m, long e, double r, double& mantissa, long& exponent)
+{
+  // The common case (the product never left ±2^256, |r| in [2^-400, 2^400] or 0):
+  // m − r directly. ScaledMinus would scale both terms by the same power of two first,
+  // keeping them normal numbers there, which changes neither the rounding nor the result.
+  const double am = std::fabs(m), ar = std::fabs(r);
+  if (e == 0 && (am == 0.0 || (am >= 0x1p-400 && am <= 0x1p400)) &&
+    (ar == 0.0 || (ar >= 0x1p-400 && ar <= 0x1p400)))
+  {
+    int ex;
+    const double F = m - r;
+    mantissa = std::frexp(F, &ex);
+    exponent = F == 0.0 ? 0 : ex;
+    return;
+  }
+  ScaledMinus(m, e, r, mantissa, exponent);
+}
+
 void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& exponent) const
 {
   double m = 1.0;
@@ -344,7 +363,53 @@ void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& ex
   {
     Accumulate(m, e, f.Evaluate(p));
   }
-  ScaledMinus(m, e, this->Blending, mantissa, exponent);
+  FinishScaled(m, e, this->Blending, mantissa, exponent);
+}
+
+void ProductKernel::EvaluateScaledMany(
+  const double* p, int n, double* mantissa, long* exponent) const
+{
+  if (n > 8)
+  {
+    for (int k = 0; k < n; ++k)
+    {
+      this->EvaluateScaled(p + 3 * k, mantissa[k], exponent[k]);
+    }
+    return;
+  }
+  double m[8], v[8], q[24];
+  long e[8];
+  for (int k = 0; k < n; ++k)
+  {
+    m[k] = 1.0;
+    e[k] = 0;
+  }
+  for (const Factor& f : this->Factors)
+  {
+    if (f.IsPolynomial)
+    {
+      for (int k = 0; k < n; ++k)
+      {
+        f.Polynomial.ToLocal(p + 3 * k, q + 3 * k);
+      }
+      f.Polynomial.Poly.EvaluateMany(q, n, v);
+    }
+    else
+    {
+      for (int k = 0; k < n; ++k)
+      {
+        v[k] = f.Generic(p + 3 * k, nullptr);
+      }
+    }
+    for (int k = 0; k < n; ++k)
+    {
+      Accumulate(m[k], e[k], v[k]);
+    }
+  }
+  for (int k = 0; k < n; ++k)
+  {
+    FinishScaled(m[k], e[k], this->Blending, mantissa[k], exponent[k]);
+  }
 }
 
 int ProductKernel::EvaluateSignAndLog(const double p[3], double& logAbs) const

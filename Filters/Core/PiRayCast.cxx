@@ -19,6 +19,7 @@ RayCaster::RayCaster(const ProductKernel& kernel)
     if (factor.IsPolynomial)
     {
       this->Counts.push_back(std::max(factor.Polynomial.Poly.GetDegree(), 0) + 1);
+      this->LineCoefficients += this->Counts.back();
     }
   }
 }
@@ -55,21 +56,143 @@ void RayCaster::Cast(const double start[3], const double d[3], double length,
   }
 }
 
+void RayCaster::CastRestricted(const double* coefficients, double t0, double t1,
+  const RayRootOptions& options, std::vector<RayRoot>& roots) const
+{
+  roots.clear();
+  FindRayRoots(coefficients, this->Counts.data(), static_cast<int>(this->Counts.size()),
+    this->Kernel.GetBlending(), t0, t1, options, roots);
+}
+
+RayGrid::RayGrid(const ProductKernel& kernel, const double O[3], const double U[3],
+  const double V[3], const double D[3], int w, int h, double length)
+  : CentreI(0.5 * (w - 1))
+  , CentreJ(0.5 * (h - 1))
+  , HalfLength(0.5 * length)
+{
+  // World point of (i', j', s) with i' = i − CentreI, j' = j − CentreJ.
+  double centre[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = O[k] + this->CentreI * U[k] + this->CentreJ * V[k] + this->HalfLength * D[k];
+  }
+  size_t offset = 0, rowOffset = 0;
+  for (size_t f = 0; f < kernel.GetNumberOfFactors(); ++f)
+  {
+    const Factor& factor = kernel.GetFactor(f);
+    if (!factor.IsPolynomial)
+    {
+      continue;
+    }
+    const PolynomialFactor& pf = factor.Polynomial;
+    // Local coordinates q = A·p + B of p = centre + i'·U + j'·V + s·D.
+    double A[3][3], b[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      A[r][0] = pf.A[r][0] * U[0] + pf.A[r][1] * U[1] + pf.A[r][2] * U[2];
+      A[r][1] = pf.A[r][0] * V[0] + pf.A[r][1] * V[1] + pf.A[r][2] * V[2];
+      A[r][2] = pf.A[r][0] * D[0] + pf.A[r][1] * D[1] + pf.A[r][2] * D[2];
+      b[r] = pf.A[r][0] * centre[0] + pf.A[r][1] * centre[1] + pf.A[r][2] * centre[2] + pf.B[r];
+    }
+    const Polynomial3 g = pf.Poly.Compose(A, b);
+    // The line coefficient count follows the factor's degree (as RestrictLine does),
+    // even if the composition cancels its top terms.
+    const int n = std::max(pf.Poly.GetDegree(), 0);
+    const size_t side = static_cast<size_t>(n) + 1;
+    this->Factors.push_back({ n, offset, rowOffset });
+    this->G.resize(offset + side * side * side, 0.0);
+    for (const Monomial& t : g.GetTerms())
+    {
+      // x -> i', y -> j', z -> s: the power of s is the line coefficient's index.
+      if (t.I <= n && t.J <= n && t.K <= n)
+      {
+        this->G[offset + (t.K * side + t.I) * side + t.J] += t.Coefficient;
+      }
+    }
+    offset += side * side * side;
+    rowOffset += side * side;
+  }
+  this->RowSize = rowOffset;
+}
+
+void RayGrid::SetRow(int j, std::vector<double>& row) const
+{
+  row.resize(this->RowSize);
+  const double y = j - this->CentreJ;
+  for (const Composed& c : this->Factors)
+  {
+    const int side = c.Degree + 1;
+    for (int m = 0; m <= c.Degree; ++m)
+    {
+      for (int a = 0; a + m <= c.Degree; ++a)
+      {
+        // Σ_b g[m][a][b] y^b, b <= deg − m − a.
+        const double* g = this->G.data() + c.Offset + (m * side + a) * side;
+        double v = 0.0;
+        for (int b = c.Degree - m - a; b >= 0; --b)
+        {
+          v = v * y + g[b];
+        }
+        row[c.RowOffset + m * side + a] = v;
+      }
+    }
+  }
+}
+
+void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficients) const
+{
+  const double x = i - this->CentreI;
+  for (const Composed& c : this->Factors)
+  {
+    const int side = c.Degree + 1;
+    const double* h = row.data() + c.RowOffset;
+    for (int m = 0; m <= c.Degree; ++m)
+    {
+      const double* hm = h + m * side;
+      double v = 0.0;
+      for (int a = c.Degree - m; a >= 0; --a)
+      {
+        v = v * x + hm[a];
+      }
+      coefficients[m] = v;
+    }
+    coefficients += side;
+  }
+}
+
 bool RayCaster::IsSingular(
   const double p[3], double logGradient, double probe, double tolerance) const
 {
-  // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow).
-  double logProbe = -std::numeric_limits<double>::infinity();
+  // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow). The
+  // largest |F| is found on the scaled values (exponent first, then mantissa: the same
+  // order as their logarithms), so only one logarithm is taken.
+  double q[18], mantissa[6];
+  long exponent[6];
   for (int a = 0; a < 6; ++a)
   {
-    double q[3] = { p[0], p[1], p[2] };
-    q[a / 2] += (a % 2 ? probe : -probe);
-    double logAbs;
-    if (this->Kernel.EvaluateSignAndLog(q, logAbs) != 0)
+    q[3 * a] = p[0];
+    q[3 * a + 1] = p[1];
+    q[3 * a + 2] = p[2];
+    q[3 * a + a / 2] += (a % 2 ? probe : -probe);
+  }
+  this->Kernel.EvaluateScaledMany(q, 6, mantissa, exponent);
+  double bestMantissa = 0.0;
+  long bestExponent = 0;
+  for (int a = 0; a < 6; ++a)
+  {
+    const double m = mantissa[a];
+    const long e = exponent[a];
+    if (m != 0.0 &&
+      (bestMantissa == 0.0 || e > bestExponent ||
+        (e == bestExponent && std::fabs(m) > bestMantissa)))
     {
-      logProbe = std::max(logProbe, logAbs);
+      bestMantissa = std::fabs(m);
+      bestExponent = e;
     }
   }
+  const double logProbe = bestMantissa == 0.0
+    ? -std::numeric_limits<double>::infinity()
+    : std::log(bestMantissa) + static_cast<double>(bestExponent) * std::log(2.0);
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 }

@@ -37,9 +37,51 @@ public:
   /// magnitude over the surface.
   bool IsSingular(const double p[3], double logGradient, double probe, double tolerance) const;
 
+  /// Roots on [t0, t1] of the product whose polynomial factors are already restricted
+  /// to the ray (GetLineCoefficientCount() coefficients, as ProductKernel::RestrictLine
+  /// or RayGrid::Restrict write them). Only for polynomial kernels.
+  void CastRestricted(const double* coefficients, double t0, double t1,
+    const RayRootOptions& options, std::vector<RayRoot>& roots) const;
+  size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
+
 private:
   const ProductKernel& Kernel;
   std::vector<int> Counts; // line coefficients per polynomial factor
+  size_t LineCoefficients = 0;
+};
+
+/// The rays of an orthographic grid, restricted cheaply: pixel (i, j) has its ray
+/// start + t·D with start = O + i·U + j·V, t in [0, length]. Each polynomial factor is
+/// composed once with the affine map (i, j, s) -> O + i·U + j·V + (length/2 + s)·D
+/// (about the grid's centre and the rays' middle, so the expansion stays accurate);
+/// SetRow substitutes j, Restrict then gives a pixel's coefficients in s by Horner's
+/// rule in i: (deg + 1)(deg + 2)/2 multiply-adds per factor of degree deg, instead of
+/// a full restriction of the trivariate polynomial per ray.
+class RayGrid
+{
+public:
+  /// Only for kernels whose factors are all polynomials.
+  RayGrid(const ProductKernel& kernel, const double O[3], const double U[3], const double V[3],
+    const double D[3], int w, int h, double length);
+
+  /// The coefficients of row j (into `row`, resized as needed).
+  void SetRow(int j, std::vector<double>& row) const;
+  /// The restricted factors of pixel (i, row) into GetLineCoefficientCount() coefficients,
+  /// in the parameter s = t − length/2 ∈ [−length/2, length/2].
+  void Restrict(const std::vector<double>& row, int i, double* coefficients) const;
+  double GetHalfLength() const { return this->HalfLength; }
+
+private:
+  struct Composed
+  {
+    int Degree;
+    size_t Offset;    // of its (deg+1)^3 coefficients g[(m·(deg+1) + a)·(deg+1) + b]
+    size_t RowOffset; // of its (deg+1)^2 row coefficients h[m·(deg+1) + a]
+  };
+  std::vector<Composed> Factors;
+  std::vector<double> G;
+  size_t RowSize = 0;
+  double CentreI, CentreJ, HalfLength;
 };
 }
 

@@ -373,6 +373,353 @@ private:
   Workspace& W;
   size_t Total = 0;
 };
+
+// The fast path for products of modest total degree: the product itself as one
+// polynomial in the Bernstein basis of [t0, t1].
+//
+// Each factor's Bernstein coefficients are scaled by a power of two to a largest
+// magnitude in [0.5, 1) (exact), the product's coefficients follow from those of the
+// factors by a convolution of the binomially weighted forms (every product coefficient
+// is a convex combination of products of factor coefficients, so the product's
+// enclosure is never wider than the product of the factors' hulls the general path
+// uses), and r is scaled by the same power of two. On a piece:
+// - all coefficients of F beyond `slack` with one sign: no root (the convex-hull
+//   property);
+// - every coefficient clearly signed and exactly one sign variation: exactly one root,
+//   a simple one (Descartes' rule of signs in the Bernstein basis);
+// - otherwise the differences of consecutive coefficients (F' in Bernstein form) of one
+//   sign: F monotone, as in the general path;
+// - else the piece is split (de Casteljau at 1/2) down to the tolerance, where a piece
+//   that still may hold a zero is a root (tangent without a sign change).
+// The slack covers rounding as the general path's does: 1e-12 relative per factor, and
+// r compared to 1e-9 relative.
+constexpr int FastDegree = 48;
+
+// The single root of phi in [a, b] (phi(a) = va, opposite signs at the ends): Newton's
+// method safeguarded by the bracket (bisection where a step leaves it), from t.
+// `phid(t, derivative)` returns phi(t) and its derivative. Once a step is shorter than
+// a quarter of `width`, the sign a quarter width beyond the predicted root is tried:
+// a change closes a bracket shorter than width/2 at once. The result is the midpoint
+// of a bracket of width at most `width` (or a point where phi is exactly 0), as
+// BracketedRoot's, in a few steps instead of regula falsi's dozen.
+template <class Function>
+double NewtonRoot(
+  const Function& phid, double a, double b, double va, double width, double t)
+{
+  if (!(t > a && t < b))
+  {
+    t = 0.5 * (a + b);
+  }
+  for (int it = 0; it < 200 && b - a > width; ++it)
+  {
+    double dv;
+    const double v = phid(t, dv);
+    if (v == 0.0)
+    {
+      return t;
+    }
+    if ((v < 0) == (va < 0))
+    {
+      a = t;
+      va = v;
+    }
+    else
+    {
+      b = t;
+    }
+    if (b - a <= width)
+    {
+      break;
+    }
+    const double step = v / dv;
+    double next = t - step;
+    if (!std::isfinite(next) || !(next > a && next < b))
+    {
+      t = 0.5 * (a + b);
+      continue;
+    }
+    if (std::fabs(step) < 0.25 * width)
+    {
+      // Close: [t, u] around the predicted root, u a quarter width beyond it.
+      const double u = step < 0 ? std::min(next + 0.25 * width, b) : std::max(next - 0.25 * width, a);
+      double du;
+      const double vu = phid(u, du);
+      if (vu == 0.0)
+      {
+        return u;
+      }
+      if ((vu < 0) != (v < 0))
+      {
+        return 0.5 * (t + u);
+      }
+      if ((vu < 0) == (va < 0))
+      {
+        a = u;
+        va = vu;
+      }
+      else
+      {
+        b = u;
+      }
+      next = 0.5 * (a + b);
+    }
+    t = next;
+  }
+  return 0.5 * (a + b);
+}
+
+struct FastWorkspace
+{
+  std::vector<double> Pool; // piece coefficients, a stack following the DFS
+  std::vector<Piece> Stack;
+  std::vector<double> Scaled; // the factors' coefficients scaled by 2^-e_i
+  double Binomial[FastDegree + 1][FastDegree + 1];
+  FastWorkspace()
+  {
+    for (int n = 0; n <= FastDegree; ++n)
+    {
+      this->Binomial[n][0] = this->Binomial[n][n] = 1.0;
+      for (int k = 1; k < n; ++k)
+      {
+        this->Binomial[n][k] = this->Binomial[n - 1][k - 1] + this->Binomial[n - 1][k];
+      }
+    }
+  }
+};
+
+// Returns false when the fast path does not apply (the caller then takes the general
+// one): total degree above FastDegree, a factor identically zero on the segment, or a
+// scale that leaves the double range.
+bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r,
+  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
+{
+  int degree = 0;
+  for (int i = 0; i < factors; ++i)
+  {
+    degree += counts[i] - 1;
+  }
+  if (degree > FastDegree || factors == 0)
+  {
+    return false;
+  }
+  thread_local FastWorkspace w;
+  const int n = degree + 1;
+  // The product in scaled (binomially weighted) Bernstein form, factor by factor.
+  double product[FastDegree + 1], next[FastDegree + 1], bern[MaxDegree + 1], q[MaxDegree + 1];
+  product[0] = 1.0;
+  int current = 0; // degree of the product so far
+  long exponent = 0;
+  w.Scaled.resize(0);
+  for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+  {
+    const int count = counts[i], d = count - 1;
+    // Taylor shift to t0 and scaling to [0, 1] (as ToBernstein), then the weighted
+    // Bernstein coefficients C(d, k)·b_k = Σ_{j<=k} C(d − j, k − j)·q_j directly: no
+    // divisions.
+    std::copy(coefficients + offset, coefficients + offset + count, q);
+    for (int a = 0; a < d; ++a)
+    {
+      for (int k = d - 1; k >= a; --k)
+      {
+        q[k] += t0 * q[k + 1];
+      }
+    }
+    double h = 1.0;
+    for (int j = 0; j <= d; ++j)
+    {
+      q[j] *= h;
+      h *= (t1 - t0);
+    }
+    for (int k = 0; k <= d; ++k)
+    {
+      double sum = 0.0;
+      for (int j = 0; j <= k; ++j)
+      {
+        sum += w.Binomial[d - j][k - j] * q[j];
+      }
+      bern[k] = sum;
+    }
+    double m = 0.0;
+    for (int k = 0; k < count; ++k)
+    {
+      m = std::max(m, std::fabs(bern[k]) / w.Binomial[d][k]);
+    }
+    if (!(m > 0.0) || !std::isfinite(m))
+    {
+      return false;
+    }
+    int e;
+    std::frexp(m, &e);
+    if (e > 1000 || e < -1000)
+    {
+      return false;
+    }
+    exponent += e;
+    const double scale = std::ldexp(1.0, -e); // exact: multiplying by it only rescales
+    for (int k = 0; k < count; ++k)
+    {
+      bern[k] *= scale;
+    }
+    for (int k = 0; k < count; ++k)
+    {
+      w.Scaled.push_back(coefficients[offset + k] * scale);
+    }
+    std::fill(next, next + current + d + 1, 0.0);
+    for (int a = 0; a <= current; ++a)
+    {
+      for (int b = 0; b <= d; ++b)
+      {
+        next[a + b] += product[a] * bern[b];
+      }
+    }
+    current += d;
+    std::copy(next, next + current + 1, product);
+  }
+  double rs = 0.0;
+  if (r != 0.0)
+  {
+    if (exponent > 900 || exponent < -900)
+    {
+      return false;
+    }
+    rs = std::ldexp(r, static_cast<int>(-exponent));
+    if (!(std::fabs(rs) > 1e-290) || !std::isfinite(rs))
+    {
+      return false;
+    }
+  }
+  // The Bernstein coefficients of F·2^-exponent on [t0, t1].
+  std::vector<double>& pool = w.Pool;
+  std::vector<Piece>& stack = w.Stack;
+  pool.resize(n);
+  for (int k = 0; k < n; ++k)
+  {
+    pool[k] = product[k] / w.Binomial[degree][k] - rs;
+  }
+  const double rslack = 1e-9 * std::fabs(rs);
+  const double fslack = 1e-12 * (factors + 1);
+  const double* scaled = w.Scaled.data();
+  auto phid = [&](double t, double& derivative) {
+    double v = 1.0, dv = 0.0;
+    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+    {
+      // Horner for the factor and its derivative, then the product rule.
+      const double* c = scaled + offset;
+      double f = 0.0, df = 0.0;
+      for (int k = counts[i] - 1; k >= 0; --k)
+      {
+        df = df * t + f;
+        f = f * t + c[k];
+      }
+      dv = dv * f + v * df;
+      v *= f;
+    }
+    derivative = dv;
+    return v - rs;
+  };
+  auto add = [&](const RayRoot& root) {
+    if (!roots.empty() && root.T - roots.back().T <= 2.0 * options.Tolerance)
+    {
+      roots.back().Tangent = roots.back().Tangent && root.Tangent;
+      return;
+    }
+    roots.push_back(root);
+  };
+  stack.clear();
+  stack.push_back({ t0, t1, 0, 0 });
+  while (!stack.empty())
+  {
+    const Piece p = stack.back();
+    stack.pop_back();
+    pool.resize(p.Offset + n);
+    const double* f = pool.data() + p.Offset;
+    // The product's magnitude on the piece sets the rounding slack.
+    double lo = f[0], hi = f[0];
+    for (int k = 1; k < n; ++k)
+    {
+      lo = std::min(lo, f[k]);
+      hi = std::max(hi, f[k]);
+    }
+    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + 1e-300;
+    if (lo > slack || hi < -slack)
+    {
+      continue; // no root in this piece
+    }
+    const double va = f[0], vb = f[degree];
+    const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+    // Descartes: every coefficient clearly signed and one sign variation.
+    int variations = 0;
+    bool clear = true;
+    for (int k = 0; k < n && clear; ++k)
+    {
+      clear = std::fabs(f[k]) > slack;
+      variations += k > 0 && ((f[k] < 0) != (f[k - 1] < 0));
+    }
+    bool single = clear && variations == 1;
+    bool monotone = single;
+    if (!single)
+    {
+      // F' in Bernstein form: degree·(f_{k+1} − f_k)/(b − a); its sign is that of the
+      // differences. The slack of F bounds their rounding (twice).
+      bool up = true, down = true;
+      for (int k = 0; k < degree && (up || down); ++k)
+      {
+        const double dk = f[k + 1] - f[k];
+        up = up && dk > 2.0 * slack;
+        down = down && dk < -2.0 * slack;
+      }
+      monotone = degree > 0 && (up || down);
+    }
+    if (monotone)
+    {
+      if (change)
+      {
+        // Start where the control polygon first crosses zero: close to the root (the
+        // polygon converges quadratically to F as pieces shrink).
+        double start = 0.5;
+        for (int k = 0; k < degree; ++k)
+        {
+          if ((f[k] < 0) != (f[k + 1] < 0))
+          {
+            start = (k + f[k] / (f[k] - f[k + 1])) / degree;
+            break;
+          }
+        }
+        add({ NewtonRoot(phid, p.A, p.B, va, options.Tolerance,
+                p.A + start * (p.B - p.A)),
+          false });
+      }
+      else if (va == 0.0 || vb == 0.0)
+      {
+        add({ va == 0.0 ? p.A : p.B, false });
+      }
+      if (!options.AllRoots && !roots.empty())
+      {
+        return true;
+      }
+      continue;
+    }
+    if (p.B - p.A <= options.Tolerance || p.Depth >= options.MaximumDepth)
+    {
+      add({ 0.5 * (p.A + p.B), !change });
+      if (!options.AllRoots)
+      {
+        return true;
+      }
+      continue;
+    }
+    // Split: the right half below the left on the stack (the left is processed first);
+    // the right half's coefficients first in the pool, so popping the left truncates
+    // the pool above its own.
+    const size_t right = p.Offset + n, left = right + n;
+    pool.resize(left + n);
+    Split(pool.data() + p.Offset, n, pool.data() + left, pool.data() + right);
+    const double mid = 0.5 * (p.A + p.B);
+    stack.push_back({ mid, p.B, p.Depth + 1, right });
+    stack.push_back({ p.A, mid, p.Depth + 1, left });
+  }
+  return true;
+}
 }
 
 bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
@@ -398,6 +745,11 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     {
       return false;
     }
+  }
+  roots.clear();
+  if (FastRayRoots(coefficients, counts, factors, r, t0, t1, options, roots))
+  {
+    return true;
   }
   roots.clear();
   thread_local Workspace workspace;

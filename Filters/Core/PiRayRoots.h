@@ -18,6 +18,15 @@
  *   with a sign change it is a crossing, without one F touches zero there (a tangent
  *   root, flagged). Adjacent such intervals are reported once.
  *
+ * Products of total degree up to 48 (the paper's models) take a faster path with the
+ * same guarantees: the product itself in the Bernstein basis (a convolution of the
+ * factors' power-of-two scaled Bernstein forms; its hull is never wider than the product
+ * of the factors' hulls), exclusion by that hull, Descartes' rule of signs (one sign
+ * variation among clearly signed coefficients = exactly one simple root) before the
+ * monotonicity test, and Newton's method safeguarded by the bracket, from the control
+ * polygon's zero crossing, that returns the midpoint of a bracket no longer than the
+ * tolerance. Larger products (molecules) keep the general path above.
+ *
  * Thin features (a torus of minor radius 0.01, two spheres 1e-6 apart) are therefore
  * never skipped, unlike fixed-step marching. No VTK here.
  */

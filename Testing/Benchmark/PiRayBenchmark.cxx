@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Ray benchmark (./run bench): vtkPiRayCaster's certified first hits against a fixed-step
 // marcher with bisection given the same time budget, on 1024² rays of the −Y view.
-// Prints a Markdown table: rays per second, and the hits the marcher misses.
+// Prints a Markdown table: rays per second (from wall-clock time, and for the Sequential
+// backend also from the process CPU time, which other processes on a shared machine
+// disturb less), the all-hits time over the first-hit time, and the hits the marcher
+// misses. PIRAY_BENCH_QUICK=1 skips the marcher and the spheres (for profiling).
 #include "PiProduct.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiRayCaster.h"
@@ -14,6 +17,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <ctime>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -23,6 +28,11 @@ namespace
 double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double CpuSeconds(std::clock_t start)
+{
+  return double(std::clock() - start) / CLOCKS_PER_SEC;
 }
 
 // First-hit depth per pixel of the −Y view by fixed steps and bisection (−1: no hit).
@@ -79,9 +89,37 @@ void Run(const std::string& name, vtkPiSurface* surface, int n)
   caster->SetResolution(n, n);
   caster->SetBounds(b);
   auto start = std::chrono::steady_clock::now();
+  std::clock_t cpuStart = std::clock();
   caster->Update();
   const double ours = Seconds(start);
+  const double oursCpu = CpuSeconds(cpuStart);
   vtkPolyData* hits = caster->GetOutput();
+  // The same rays with every hit.
+  vtkNew<vtkPiRayCaster> all;
+  all->SetPiSurface(surface);
+  all->SetViewMode(vtkPiRayCaster::MINUS_Y);
+  all->SetResolution(n, n);
+  all->SetBounds(b);
+  all->SetAllHits(true);
+  start = std::chrono::steady_clock::now();
+  cpuStart = std::clock();
+  all->Update();
+  const double allTime = Seconds(start);
+  const double allCpu = CpuSeconds(cpuStart);
+  const bool sequential = std::string(vtkSMPTools::GetBackend()) == "Sequential";
+  char cpuRate[32] = "-";
+  if (sequential)
+  {
+    std::snprintf(cpuRate, sizeof(cpuRate), "%.2f M", double(n) * n / oursCpu / 1e6);
+  }
+  const double ratio = sequential ? allCpu / oursCpu : allTime / ours;
+  if (std::getenv("PIRAY_BENCH_QUICK"))
+  {
+    std::printf("| %s | %s | %.3f s | %.2f M | %s | %.2f |\n", name.c_str(),
+      vtkSMPTools::GetBackend(), ours, double(n) * n / ours / 1e6, cpuRate, ratio);
+    std::fflush(stdout);
+    return;
+  }
   std::vector<char> hit(size_t(n) * n, 0);
   vtkDataArray* pixel = hits->GetPointData()->GetArray("PixelIndex");
   for (vtkIdType k = 0; k < hits->GetNumberOfPoints(); ++k)
@@ -103,9 +141,10 @@ void Run(const std::string& name, vtkPiSurface* surface, int n)
   {
     missed += hit[p] && depth[p] < 0;
   }
-  std::printf("| %s | %s | %.3f s | %.2f M | %d | %.3f s | %ld of %ld |\n", name.c_str(),
-    vtkSMPTools::GetBackend(), ours, double(n) * n / ours / 1e6, steps, marcher, missed,
-    static_cast<long>(hits->GetNumberOfPoints()));
+  std::printf("| %s | %s | %.3f s | %.2f M | %s | %.2f | %d | %.3f s | %ld of %ld |\n",
+    name.c_str(), vtkSMPTools::GetBackend(), ours, double(n) * n / ours / 1e6, cpuRate, ratio,
+    steps, marcher, missed, static_cast<long>(hits->GetNumberOfPoints()));
+  std::fflush(stdout);
 }
 }
 
@@ -119,23 +158,41 @@ int main(int argc, char* argv[])
   const std::string models = argv[1];
   const int n = argc > 2 ? std::atoi(argv[2]) : 1024;
   std::printf("\n%d x %d first-hit rays, -Y view\n\n", n, n);
-  std::printf("| model | backend | vtkPiRayCaster | rays/s | marcher steps (same time) | "
-              "marcher | hits the marcher misses |\n|---|---|---|---|---|---|---|\n");
+  const bool quick = std::getenv("PIRAY_BENCH_QUICK") != nullptr;
+  std::printf("| model | backend | vtkPiRayCaster | rays/s (wall) | rays/s (CPU) | "
+              "all hits / first hit |%s\n|---|---|---|---|---|---|%s\n",
+    quick ? "" : " marcher steps (same time) | marcher | hits the marcher misses |",
+    quick ? "" : "---|---|---|");
   for (const char* backend : { "Sequential", "STDThread" })
   {
-    vtkSMPTools::SetBackend(backend);
-    vtkNew<vtkPiSurface> spheres;
-    for (int i = 0; i < 10; ++i)
+    // PIRAY_BENCH_BACKEND=Sequential runs only that backend.
+    const char* onlyBackend = std::getenv("PIRAY_BENCH_BACKEND");
+    if (onlyBackend && std::string(onlyBackend) != backend)
     {
-      vtkNew<vtkPiPrimitive> s;
-      s->SetCenter(1.2 * (i % 5) - 2.4, 1.2 * (i / 5) - 0.6, 0.1 * i);
-      s->SetRadius(0.8);
-      spheres->AddFactor(s);
+      continue;
     }
-    spheres->SetBlending(0.5);
-    Run("10 spheres", spheres, n);
+    vtkSMPTools::SetBackend(backend);
+    if (!quick)
+    {
+      vtkNew<vtkPiSurface> spheres;
+      for (int i = 0; i < 10; ++i)
+      {
+        vtkNew<vtkPiPrimitive> s;
+        s->SetCenter(1.2 * (i % 5) - 2.4, 1.2 * (i / 5) - 0.6, 0.1 * i);
+        s->SetRadius(0.8);
+        spheres->AddFactor(s);
+      }
+      spheres->SetBlending(0.5);
+      Run("10 spheres", spheres, n);
+    }
     for (const char* name : { "cup_a1.0", "table" })
     {
+      // PIRAY_BENCH_MODELS=cup_a1.0 runs only the models it names.
+      const char* only = std::getenv("PIRAY_BENCH_MODELS");
+      if (only && std::string(only).find(name) == std::string::npos)
+      {
+        continue;
+      }
       vtkNew<vtkPiSurface> model;
       model->LoadModel((models + "/" + name + ".pisurf").c_str());
       Run(name, model, n);
