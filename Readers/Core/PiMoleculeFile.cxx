@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <fstream>
+#include <iterator>
 
 namespace pisurf
 {
@@ -209,8 +210,22 @@ bool ReadMoleculeFile(const std::string& path, const MoleculeReadOptions& option
   try
   {
     gemmi::MaybeGzipped input(path);
-    gemmi::CharArray mem = input.uncompress_into_buffer();
-    text.assign(mem.data(), mem.data() + mem.size());
+    if (input.is_compressed())
+    {
+      gemmi::CharArray mem = input.uncompress_into_buffer();
+      text.assign(mem.data(), mem.data() + mem.size());
+    }
+    else
+    {
+      // Not gemmi's reader: it refuses an empty file with a misleading system error.
+      std::ifstream file(path, std::ios::binary);
+      text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+      if (file.bad())
+      {
+        error = "Cannot read " + path;
+        return false;
+      }
+    }
   }
   catch (const std::exception& e)
   {
