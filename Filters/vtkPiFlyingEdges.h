@@ -191,6 +191,8 @@ protected:
   ~vtkPiFlyingEdges() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // RequestData's work; RequestData turns a failed allocation into an error.
+  int GenerateMesh(vtkInformationVector* outputVector);
   void ReportReferences(vtkGarbageCollector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // AutomaticResolution's search; 0 (with an error) if no resolution fits.

@@ -320,7 +320,8 @@ bool ValidBounds(const double b[6])
 {
   for (int i = 0; i < 3; ++i)
   {
-    if (!std::isfinite(b[2 * i]) || !std::isfinite(b[2 * i + 1]) || !(b[2 * i] < b[2 * i + 1]))
+    // The side must be finite too: [-1e308, 1e308] would give infinite spacings.
+    if (!std::isfinite(b[2 * i + 1] - b[2 * i]) || !(b[2 * i] < b[2 * i + 1]))
     {
       return false;
     }

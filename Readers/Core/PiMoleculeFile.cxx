@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <iterator>
@@ -130,6 +131,76 @@ bool Select(const gemmi::Structure& structure, const std::string& name,
   return true;
 }
 
+// A coordinate field of a PDB record: blanks, then [-+]digits[.digits] (or .digits).
+bool IsCoordinate(const char* f, size_t n)
+{
+  size_t i = 0;
+  while (i < n && f[i] == ' ')
+  {
+    ++i;
+  }
+  if (i < n && (f[i] == '-' || f[i] == '+'))
+  {
+    ++i;
+  }
+  size_t digits = 0;
+  while (i < n && std::isdigit(static_cast<unsigned char>(f[i])))
+  {
+    ++i;
+    ++digits;
+  }
+  if (i < n && f[i] == '.')
+  {
+    ++i;
+    while (i < n && std::isdigit(static_cast<unsigned char>(f[i])))
+    {
+      ++i;
+      ++digits;
+    }
+  }
+  return digits > 0 && i == n;
+}
+
+// gemmi reads PDB coordinates leniently ("x0.000" or a shifted column gives some
+// number): a hand-edited file would silently give wrong atoms. Columns 31-54 of every
+// ATOM/HETATM record must hold three numbers.
+bool CheckPdbCoordinates(const std::vector<char>& text, const std::string& name, std::string& error)
+{
+  size_t line = 1;
+  for (size_t start = 0; start < text.size(); ++line)
+  {
+    size_t end = start;
+    while (end < text.size() && text[end] != '\n')
+    {
+      ++end;
+    }
+    const char* l = text.data() + start;
+    const size_t n = end - start - (end > start && text[end - 1] == '\r' ? 1 : 0);
+    if (n >= 6 && (std::strncmp(l, "ATOM  ", 6) == 0 || std::strncmp(l, "HETATM", 6) == 0))
+    {
+      if (n < 54)
+      {
+        error = "Cannot read " + name + ": line " + std::to_string(line) +
+          ": an atom record shorter than 54 characters (no x, y, z in columns 31-54)";
+        return false;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        if (!IsCoordinate(l + 30 + 8 * c, 8))
+        {
+          error = "Cannot read " + name + ": line " + std::to_string(line) + ": columns " +
+            std::to_string(31 + 8 * c) + "-" + std::to_string(38 + 8 * c) + " ('" +
+            std::string(l + 30 + 8 * c, 8) + "') must hold the " + "xyz"[c] +
+            " coordinate (wrong columns?)";
+          return false;
+        }
+      }
+    }
+    start = end + 1;
+  }
+  return true;
+}
+
 bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat format,
   const MoleculeReadOptions& options, MoleculeAtoms& atoms, std::string& error)
 {
@@ -140,6 +211,16 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
     // gemmi's parsers read up to the given size; the terminating NUL is for the ones
     // that look one character ahead.
     const size_t size = text.size();
+    if (format == MoleculeFormat::Detect)
+    {
+      const gemmi::CoorFormat detected = gemmi::coor_format_from_content(text.data(), text.data() + size);
+      format = detected == gemmi::CoorFormat::Pdb ? MoleculeFormat::Pdb : format;
+    }
+    if (format == MoleculeFormat::Pdb && !CheckPdbCoordinates(text, name, error))
+    {
+      atoms = MoleculeAtoms();
+      return false;
+    }
     text.push_back('\0');
     gemmi::Structure structure;
     switch (format)
