@@ -163,7 +163,7 @@ bool IsCoordinate(const char* f, size_t n)
 
 // gemmi reads PDB coordinates leniently ("x0.000" or a shifted column gives some
 // number): a hand-edited file would silently give wrong atoms. Columns 31-54 of every
-// ATOM/HETATM record must hold three numbers.
+// ATOM/HETATM record must hold three numbers, and the text must have no NUL byte.
 bool CheckPdbCoordinates(const std::vector<char>& text, const std::string& name, std::string& error)
 {
   size_t line = 1;
@@ -172,6 +172,13 @@ bool CheckPdbCoordinates(const std::vector<char>& text, const std::string& name,
     size_t end = start;
     while (end < text.size() && text[end] != '\n')
     {
+      if (text[end] == '\0')
+      {
+        // gemmi keeps some records as C strings: a NUL would cut them short.
+        error = "Cannot read " + name + ": line " + std::to_string(line) +
+          ": a NUL byte (binary data, not PDB text)";
+        return false;
+      }
       ++end;
     }
     const char* l = text.data() + start;
@@ -201,6 +208,38 @@ bool CheckPdbCoordinates(const std::vector<char>& text, const std::string& name,
   return true;
 }
 
+// PDB is a format of 80-column lines, and gemmi reads its fixed columns without
+// checking the line's length (a 75-character LINK or SSBOND record made fast_float read
+// past the end of the line: found by ./run fuzz molecule). Lines are padded with blanks
+// to 80 columns, which the format defines as blank fields.
+std::vector<char> PadPdbLines(const std::vector<char>& text)
+{
+  std::vector<char> padded;
+  padded.reserve(text.size() + text.size() / 8 + 81);
+  size_t start = 0;
+  while (start < text.size())
+  {
+    size_t end = start;
+    while (end < text.size() && text[end] != '\n')
+    {
+      ++end;
+    }
+    size_t length = end - start;
+    if (length > 0 && text[end - 1] == '\r')
+    {
+      --length;
+    }
+    padded.insert(padded.end(), text.begin() + start, text.begin() + start + length);
+    if (length < 80)
+    {
+      padded.insert(padded.end(), 80 - length, ' ');
+    }
+    padded.push_back('\n');
+    start = end + 1;
+  }
+  return padded;
+}
+
 bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat format,
   const MoleculeReadOptions& options, MoleculeAtoms& atoms, std::string& error)
 {
@@ -211,6 +250,12 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
     // gemmi's parsers read up to the given size; the terminating NUL is for the ones
     // that look one character ahead.
     const size_t size = text.size();
+    if (size == 0)
+    {
+      // Not given to gemmi: its format detection does arithmetic on the (null) data.
+      error = "No atoms in " + name + ": the file is empty";
+      return false;
+    }
     if (format == MoleculeFormat::Detect)
     {
       const gemmi::CoorFormat detected = gemmi::coor_format_from_content(text.data(), text.data() + size);
@@ -221,18 +266,23 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
       atoms = MoleculeAtoms();
       return false;
     }
+    if (format == MoleculeFormat::Pdb)
+    {
+      text = PadPdbLines(text);
+    }
+    const size_t parsed = text.size();
     text.push_back('\0');
     gemmi::Structure structure;
     switch (format)
     {
       case MoleculeFormat::Pdb:
-        structure = gemmi::read_pdb_from_memory(text.data(), size, name);
+        structure = gemmi::read_pdb_from_memory(text.data(), parsed, name);
         break;
       case MoleculeFormat::Mmcif:
-        structure = gemmi::make_structure(gemmi::cif::read_memory(text.data(), size, name.c_str()));
+        structure = gemmi::make_structure(gemmi::cif::read_memory(text.data(), parsed, name.c_str()));
         break;
       case MoleculeFormat::Detect:
-        structure = gemmi::read_structure_from_char_array(text.data(), size, name);
+        structure = gemmi::read_structure_from_char_array(text.data(), parsed, name);
         break;
     }
     ok = Select(structure, name, options, atoms, error);
