@@ -136,7 +136,8 @@ public:
   ///@}
 
   ///@{
-  /// Largest grid accepted, in samples (default 2^28, i.e. 2 GiB of doubles).
+  /// Largest grid accepted, in samples (default 2^28, i.e. 2 GiB of doubles); the
+  /// factors' row polynomials share this cap. Refusals state the memory needed.
   vtkSetMacro(MaximumNumberOfSamples, vtkIdType);
   vtkGetMacro(MaximumNumberOfSamples, vtkIdType);
   ///@}

@@ -253,7 +253,7 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
     if (size == 0)
     {
       // Not given to gemmi: its format detection does arithmetic on the (null) data.
-      error = "No atoms in " + name + ": the file is empty";
+      error = "No atoms in " + name + ": the file is empty (no ATOM/HETATM records)";
       return false;
     }
     if (format == MoleculeFormat::Detect)
