@@ -210,8 +210,8 @@ bool CheckPdbCoordinates(const std::vector<char>& text, const std::string& name,
 
 // PDB is a format of 80-column lines, and gemmi reads its fixed columns without
 // checking the line's length (a 75-character LINK or SSBOND record made fast_float read
-// past the end of the line: found by ./run fuzz molecule). Lines are padded with blanks
-// to 80 columns, which the format defines as blank fields.
+// past the end of the line: found by ./run fuzz molecule). Lines are cut or padded with
+// blanks to exactly 80 columns, which the format defines as blank fields.
 std::vector<char> PadPdbLines(const std::vector<char>& text)
 {
   std::vector<char> padded;
@@ -229,10 +229,24 @@ std::vector<char> PadPdbLines(const std::vector<char>& text)
     {
       --length;
     }
+    // Beyond column 80 nothing is defined; and gemmi, skipping the rest of a line longer
+    // than 120 characters, stops at a byte >= 0x80 and reads the remainder as a new,
+    // short record (a LINK there overran its buffer: found by fuzzing).
+    length = std::min<size_t>(length, 80);
+    const size_t first = padded.size();
     padded.insert(padded.end(), text.begin() + start, text.begin() + start + length);
     if (length < 80)
     {
       padded.insert(padded.end(), 80 - length, ' ');
+    }
+    // Connection records (SSBOND, LINK, CISPEP) are not used here, and gemmi's reading
+    // of them still overran a line (found by fuzzing): they become blank records.
+    const char* record = padded.data() + first;
+    if (gemmi::pdb_impl::is_record_type(record, "SSBOND") ||
+      gemmi::pdb_impl::is_record_type(record, "LINK") ||
+      gemmi::pdb_impl::is_record_type(record, "CISPEP"))
+    {
+      std::fill(padded.begin() + first, padded.end(), ' ');
     }
     padded.push_back('\n');
     start = end + 1;
