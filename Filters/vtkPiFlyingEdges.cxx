@@ -40,6 +40,7 @@
 #include <cmath>
 #include <deque>
 #include <memory>
+#include <new>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiFlyingEdges);
@@ -1228,6 +1229,8 @@ bool vtkPiFlyingEdges::ComputeGrid(
 {
   const double side[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
   const int* sd = this->SampleDimensions;
+  // Points per axis as doubles: checked against the cap before any cast to int.
+  double points[3];
   if (sd[0] != 0 || sd[1] != 0 || sd[2] != 0)
   {
     if (sd[0] < 2 || sd[1] < 2 || sd[2] < 2)
@@ -1236,7 +1239,7 @@ bool vtkPiFlyingEdges::ComputeGrid(
                     << ", " << sd[1] << ", " << sd[2] << "); set all to 0 to use Resolution");
       return false;
     }
-    std::copy(sd, sd + 3, dims);
+    std::copy(sd, sd + 3, points);
   }
   else
   {
@@ -1248,23 +1251,24 @@ bool vtkPiFlyingEdges::ComputeGrid(
     const double h = std::max({ side[0], side[1], side[2] }) / resolution;
     for (int a = 0; a < 3; ++a)
     {
-      const double cells = std::max(1.0, std::ceil(side[a] / h - 1e-9));
-      if (cells > 1e9)
-      {
-        vtkErrorMacro(<< "Grid too fine along axis " << a);
-        return false;
-      }
-      dims[a] = static_cast<int>(cells) + 1;
+      points[a] = std::max(1.0, std::ceil(side[a] / h - 1e-9)) + 1;
     }
   }
-  const double samples = double(dims[0]) * dims[1] * dims[2];
-  if (samples > static_cast<double>(this->MaximumNumberOfSamples))
+  const double samples = points[0] * points[1] * points[2];
+  if (!(samples <= static_cast<double>(this->MaximumNumberOfSamples)) ||
+    std::max({ points[0], points[1], points[2] }) > VTK_INT_MAX)
   {
-    vtkErrorMacro(<< "A grid of " << dims[0] << " x " << dims[1] << " x " << dims[2] << " = "
-                  << samples << " samples needs up to " << samples * sizeof(double) / (1 << 20)
-                  << " MiB; the limit (MaximumNumberOfSamples) is "
-                  << this->MaximumNumberOfSamples << " samples");
+    vtkErrorMacro(<< "A grid of " << points[0] << " x " << points[1] << " x " << points[2]
+                  << " = " << samples << " samples needs up to "
+                  << samples * sizeof(double) / (1 << 20) << " MiB; the limit is "
+                  << this->MaximumNumberOfSamples * sizeof(double) / (1 << 20)
+                  << " MiB (MaximumNumberOfSamples = " << this->MaximumNumberOfSamples
+                  << " samples)");
     return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = static_cast<int>(points[a]);
   }
   for (int a = 0; a < 3; ++a)
   {
@@ -1275,6 +1279,23 @@ bool vtkPiFlyingEdges::ComputeGrid(
 
 int vtkPiFlyingEdges::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  try
+  {
+    return this->GenerateMesh(outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // The sizes are checked against MaximumNumberOfSamples first; this is a machine
+    // with less memory than that cap assumes.
+    vtkPolyData::GetData(outputVector, 0)->Initialize();
+    vtkErrorMacro(<< "Out of memory while meshing: lower the Resolution or "
+                     "MaximumNumberOfSamples");
+    return 0;
+  }
+}
+
+int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
 {
   const bool timing = std::getenv("PISURF_TIMING") != nullptr;
   auto clock = std::chrono::steady_clock::now();
@@ -1442,6 +1463,19 @@ int vtkPiFlyingEdges::RequestData(
   std::vector<double> coefficients;
   if (kernel)
   {
+    // Every polynomial factor restricted to every row: with many factors this, not the
+    // grid, is the largest array. It shares the grid's cap.
+    const double count = double(rows.size()) * kernel->GetLineCoefficientCount();
+    if (count > static_cast<double>(this->MaximumNumberOfSamples))
+    {
+      vtkErrorMacro(<< "The " << kernel->GetNumberOfFactors() << " factors restricted to the "
+                    << rows.size() << " grid rows the surface may cross need "
+                    << count * sizeof(double) / (1 << 20) << " MiB; the limit is "
+                    << this->MaximumNumberOfSamples * sizeof(double) / (1 << 20)
+                    << " MiB (MaximumNumberOfSamples doubles): lower the Resolution or the "
+                       "number of primitives");
+      return 0;
+    }
     coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
   }
   if (kernel && caches.empty())

@@ -140,7 +140,8 @@ public:
   ///@}
 
   ///@{
-  /// Largest grid accepted, in samples (default 2^28, i.e. 2 GiB of doubles).
+  /// Largest grid accepted, in samples (default 2^28, i.e. 2 GiB of doubles); the
+  /// factors' row polynomials share this cap. Refusals state the memory needed.
   vtkSetMacro(MaximumNumberOfSamples, vtkIdType);
   vtkGetMacro(MaximumNumberOfSamples, vtkIdType);
   ///@}
@@ -195,6 +196,8 @@ protected:
   ~vtkPiFlyingEdges() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // RequestData's work; RequestData turns a failed allocation into an error.
+  int GenerateMesh(vtkInformationVector* outputVector);
   void ReportReferences(vtkGarbageCollector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // AutomaticResolution's search; 0 (with an error) if no resolution fits.

@@ -40,6 +40,9 @@ constexpr vtkIdType MaximumJsonAtoms = 10000;
 // Automatic spacing: 0.25 Å unless the grid would exceed this many points.
 constexpr double AutomaticSpacing = 0.25;
 constexpr double AutomaticMaximumPoints = 16777216.0; // 2^24
+constexpr double MaximumExtent = 1e6;                  // Å
+// Global mode: atoms x far-field cells, about a minute of sums on two cores.
+constexpr double MaximumGlobalCost = 1e10;
 }
 
 vtkPiMoleculeSurface::vtkPiMoleculeSurface()
@@ -187,7 +190,7 @@ int vtkPiMoleculeSurface::RequestData(
         break;
       default:
         R = radiusArray->GetComponent(i, 0);
-        if (!(std::isfinite(R) && R > 0))
+        if (!(std::isfinite(R) && R > 0 && R <= MaximumExtent))
         {
           vtkErrorMacro(<< "Atom " << i << " has the radius " << R << " in '"
                         << (radiusArray->GetName() ? radiusArray->GetName() : "") << "'");
@@ -233,6 +236,38 @@ int vtkPiMoleculeSurface::RequestData(
     {
       atomBox[2 * a] = std::min(atomBox[2 * a], centers[3 * i + a] - radii[i]);
       atomBox[2 * a + 1] = std::max(atomBox[2 * a + 1], centers[3 * i + a] + radii[i]);
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    // Real molecules span at most a few thousand Å; beyond this, spacings and cell
+    // sizes stop being meaningful (and products of extents overflow).
+    if (!(atomBox[2 * a + 1] - atomBox[2 * a] <= MaximumExtent))
+    {
+      vtkErrorMacro(<< "The atoms span " << atomBox[2 * a + 1] - atomBox[2 * a] << " Å along "
+                    << "axis " << a << ", more than " << MaximumExtent
+                    << " Å: coordinates in the wrong unit or a corrupt file?");
+      return 0;
+    }
+  }
+  if (this->Mode == GLOBAL)
+  {
+    // Global mode sums every far atom once per 2 Å cell of the box (the cells are built
+    // lazily, but the bounds search alone touches the faces): atoms x cells is the cost.
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      cells *= std::ceil((atomBox[2 * a + 1] - atomBox[2 * a] + 2 * settings.NearDistance) /
+                 settings.CellSize) + 1;
+    }
+    cells = std::min(cells, double(1 << 21)); // MoleculeField's cap on its cells
+    if (double(count) * cells > MaximumGlobalCost)
+    {
+      vtkErrorMacro(<< "Global mode for " << count << " atoms in a box of " << cells
+                    << " cells would sum about " << double(count) * cells
+                    << " far-field terms (the limit is " << MaximumGlobalCost
+                    << "): use Mode = Local, whose cost does not grow with the molecule");
+      return 0;
     }
   }
   std::shared_ptr<const pisurf::MoleculeField> field;
@@ -292,11 +327,30 @@ int vtkPiMoleculeSurface::RequestData(
   {
     spacing = std::max(AutomaticSpacing, std::cbrt(volume / AutomaticMaximumPoints) * 1.01);
   }
+  // Refused before any cast to int: a tiny Spacing or atoms far apart make huge grids.
+  double samples = 1.0;
+  double cells[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    cells[a] = std::ceil((bounds[2 * a + 1] - bounds[2 * a]) / spacing);
+    samples *= cells[a] + 1;
+  }
+  const vtkIdType maximumSamples = vtkNew<vtkPiFlyingEdges>()->GetMaximumNumberOfSamples();
+  if (!(samples <= static_cast<double>(maximumSamples)))
+  {
+    vtkErrorMacro(<< "A grid of " << cells[0] + 1 << " x " << cells[1] + 1 << " x "
+                  << cells[2] + 1 << " samples (Spacing " << spacing << " Å over a box of "
+                  << bounds[1] - bounds[0] << " x " << bounds[3] - bounds[2] << " x "
+                  << bounds[5] - bounds[4] << " Å) needs " << samples * sizeof(double) / (1 << 20)
+                  << " MiB; the limit is " << maximumSamples * sizeof(double) / (1 << 20)
+                  << " MiB: raise the Spacing (0 chooses it)");
+    return 0;
+  }
   int dims[3];
   for (int a = 0; a < 3; ++a)
   {
     const double side = bounds[2 * a + 1] - bounds[2 * a];
-    dims[a] = static_cast<int>(std::ceil(side / spacing)) + 1;
+    dims[a] = static_cast<int>(cells[a]) + 1;
     // Centre the grid on the box with exactly this spacing.
     const double extra = (dims[a] - 1) * spacing - side;
     bounds[2 * a] -= 0.5 * extra;

@@ -50,6 +50,11 @@
  * points, then the smallest spacing that fits). Bounds: the atoms' boxes grown until F
  * is positive on the whole boundary.
  *
+ * Limits (refused with an error that says why): a grid above the mesher's cap
+ * (2^28 samples, 2 GiB; the message gives the memory needed), atoms spanning more than
+ * 10^6 Å, radii above 10^6 Å, and in Global mode atoms x 2 Å cells above 10^10 (about
+ * 10^5 atoms for a protein: use Local mode, whose cost per point is constant).
+ *
  * @warning The far-field cells and the mesher run threaded with vtkSMPTools.
  *
  * @sa vtkPiFlyingEdges vtkPiSurface vtkPiMoleculeReader vtkMolecule

@@ -41,6 +41,11 @@ vtkCxxSetObjectMacro(vtkPiRayCaster, PiSurface, vtkPiSurface);
 
 namespace vtkPiRayCasterDetail
 {
+// The memory cap of a cast (the mesher's default cap too: 2^28 doubles). Per first hit:
+// the Hit (56 bytes), the point and its nine arrays (about 90) and the image pixel.
+constexpr double MaximumBytes = double(1u << 31);
+constexpr double BytesPerRay = 160;
+
 // One view: the ray of pixel (i, j) starts at O + i·U + j·V (axis and parallel views)
 // or at O with direction D + i·U + j·V (perspective), t in [0, Length] for axis views.
 struct View
@@ -393,11 +398,16 @@ int vtkPiRayCaster::RequestData(
     vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
     return 0;
   }
-  if (this->Resolution[0] < 1 || this->Resolution[1] < 1 ||
-    double(this->Resolution[0]) * this->Resolution[1] > 1e8)
+  if (this->Resolution[0] < 1 || this->Resolution[1] < 1)
   {
-    vtkErrorMacro(<< "Resolution must be at least 1 x 1 and at most 1e8 pixels (got "
-                  << this->Resolution[0] << " x " << this->Resolution[1] << ")");
+    vtkErrorMacro(<< "Resolution must be at least 1 x 1 (got " << this->Resolution[0] << " x "
+                  << this->Resolution[1] << ")");
+    return 0;
+  }
+  if (!(this->SingularTolerance >= 0 && std::isfinite(this->SingularTolerance)))
+  {
+    vtkErrorMacro(<< "SingularTolerance must be a finite number >= 0, not "
+                  << this->SingularTolerance);
     return 0;
   }
   double b[6];
@@ -459,6 +469,16 @@ int vtkPiRayCaster::RequestData(
       double dir[3], up[3], right[3];
       for (int k = 0; k < 3; ++k)
       {
+        if (!std::isfinite(this->CameraPosition[k]) || !std::isfinite(this->CameraFocalPoint[k]) ||
+          !std::isfinite(this->CameraViewUp[k]))
+        {
+          vtkErrorMacro(<< "Degenerate camera: CameraPosition, CameraFocalPoint and "
+                           "CameraViewUp must be finite");
+          return 0;
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+      {
         dir[k] = this->CameraFocalPoint[k] - this->CameraPosition[k];
         up[k] = this->CameraViewUp[k];
       }
@@ -518,6 +538,17 @@ int vtkPiRayCaster::RequestData(
     }
   }
   const bool allHits = this->AllHits || this->ViewMode == THREE_AXIS_DIRECTIONS;
+  // The image cap: each ray's first hit costs about BytesPerRay in the hits, their
+  // arrays and the shaded image (more with AllHits).
+  const double rays = double(w) * h * views.size();
+  if (rays * BytesPerRay > MaximumBytes)
+  {
+    vtkErrorMacro(<< "Casting " << w << " x " << h << " pixels in " << views.size()
+                  << " view(s) needs at least " << rays * BytesPerRay / (1 << 20)
+                  << " MiB (about " << BytesPerRay << " bytes per ray); the limit is "
+                  << MaximumBytes / (1 << 20) << " MiB: lower the Resolution");
+    return 0;
+  }
   const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
 

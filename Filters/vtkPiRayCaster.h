@@ -122,7 +122,8 @@ public:
   ///@}
 
   ///@{
-  /// Image size in pixels, w × h (default 512 × 512).
+  /// Image size in pixels, w × h (default 512 × 512). A cast needing more than 2 GiB
+  /// (about 160 bytes per ray and view) is refused with the memory it would need.
   vtkSetVector2Macro(Resolution, int);
   vtkGetVector2Macro(Resolution, int);
   ///@}

@@ -13,6 +13,7 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtksys/SystemTools.hxx"
 #include "vtkPlane.h"
 #include "vtkQuadric.h"
 #include "vtkSMPTools.h"
@@ -735,6 +736,12 @@ bool vtkPiSurface::LoadModel(const char* path)
     vtkErrorMacro(<< this->Internals->Error);
     return false;
   }
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    this->Internals->Error = std::string("model file '") + path + "' is a directory";
+    vtkErrorMacro(<< this->Internals->Error);
+    return false;
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file)
   {
@@ -745,7 +752,13 @@ bool vtkPiSurface::LoadModel(const char* path)
   file.seekg(0, std::ios::end);
   const std::streamoff size = file.tellg();
   constexpr std::streamoff MaxSize = 512LL << 20;
-  if (size < 0 || size > MaxSize)
+  if (size < 0)
+  {
+    this->Internals->Error = std::string("cannot read model file '") + path + "'";
+    vtkErrorMacro(<< this->Internals->Error);
+    return false;
+  }
+  if (size > MaxSize)
   {
     this->Internals->Error = std::string("model file '") + path + "' is larger than 512 MiB";
     vtkErrorMacro(<< this->Internals->Error);

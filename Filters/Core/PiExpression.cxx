@@ -21,6 +21,19 @@ constexpr int MaxNesting = 200;
 
 using NodePtr = std::shared_ptr<ExpressionNode>;
 
+// A character for a message: 'c' if printable, else its byte value (a NUL in a message
+// would cut it short: what() is a C string).
+std::string Quote(char c)
+{
+  const unsigned char u = static_cast<unsigned char>(c);
+  if (u >= 0x20 && u < 0x7f)
+  {
+    return std::string("'") + c + "'";
+  }
+  static const char* const hex = "0123456789abcdef";
+  return std::string("byte 0x") + hex[u >> 4] + hex[u & 15];
+}
+
 NodePtr Node(ExpressionNode::Kind kind, NodePtr a = nullptr, NodePtr b = nullptr)
 {
   auto n = std::make_shared<ExpressionNode>();
@@ -64,7 +77,7 @@ public:
     this->SkipSpace();
     if (this->Pos < this->Text.size())
     {
-      this->Fail(std::string("unexpected '") + this->Text[this->Pos] + "'" +
+      this->Fail("unexpected " + Quote(this->Text[this->Pos]) +
         (std::isalpha(static_cast<unsigned char>(this->Text[this->Pos])) ||
               this->Text[this->Pos] == '('
             ? " (write '*' for multiplication)"
@@ -261,11 +274,11 @@ private:
       }
       return { Polynomial3::Constant(it->second), ConstantNode(it->second) };
     }
-    if (c == '\0')
+    if (this->Pos >= this->Text.size())
     {
       this->Fail("unexpected end of expression");
     }
-    this->Fail(std::string("unexpected '") + c + "'");
+    this->Fail("unexpected " + Quote(c));
   }
 
   double Number()

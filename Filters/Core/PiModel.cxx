@@ -281,13 +281,49 @@ void ParseTop(const json& j, Model& m)
                    "hyperboloid, paraboloid or polynomial)");
   }
 }
+// The deepest nesting of arrays and objects, counting brackets outside strings (for
+// malformed text the count may be off, but the parser refuses that text anyway).
+int NestingDepth(const std::string& text)
+{
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i)
+  {
+    const char c = text[i];
+    if (inString)
+    {
+      if (c == '\\')
+      {
+        ++i;
+      }
+      else if (c == '"')
+      {
+        inString = false;
+      }
+    }
+    else if (c == '"')
+    {
+      inString = true;
+    }
+    else if (c == '[' || c == '{')
+    {
+      deepest = std::max(deepest, ++depth);
+    }
+    else if (c == ']' || c == '}')
+    {
+      --depth;
+    }
+  }
+  return deepest;
+}
 }
 
 bool ValidBounds(const double b[6])
 {
   for (int i = 0; i < 3; ++i)
   {
-    if (!std::isfinite(b[2 * i]) || !std::isfinite(b[2 * i + 1]) || !(b[2 * i] < b[2 * i + 1]))
+    // The side must be finite too: [-1e308, 1e308] would give infinite spacings.
+    if (!std::isfinite(b[2 * i + 1] - b[2 * i]) || !(b[2 * i] < b[2 * i + 1]))
     {
       return false;
     }
@@ -300,13 +336,14 @@ bool ParseModel(const std::string& text, Model& model, std::string& error)
   json j;
   try
   {
-    j = json::parse(text, [](int depth, json::parse_event_t, json&) {
-      if (depth > MaxJsonDepth)
-      {
-        throw ModelError("JSON nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
-      }
-      return true;
-    });
+    // The depth is checked before parsing, not by a parser callback: nlohmann's
+    // callback parser rescans an array at the end of each of its objects, which made
+    // 10^5 primitives take seconds and 10^6 hang for minutes.
+    if (NestingDepth(text) > MaxJsonDepth)
+    {
+      throw ModelError("JSON nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
+    }
+    j = json::parse(text);
   }
   catch (const json::parse_error& e)
   {

@@ -35,14 +35,17 @@ struct Model
 
 /// Nesting deeper than this in a model file is refused.
 constexpr int MaxJsonDepth = 32;
-/// At most this many primitives in one model file.
-constexpr size_t MaxPrimitives = 1000000;
+/// At most this many primitives in one model file. Meshing costs O(primitives) per grid
+/// block and per grid row (10^6 primitives took minutes before the row coefficients
+/// were refused for memory); molecules, which have more atoms, are fields of their own
+/// (vtkPiMoleculeSurface), not models.
+constexpr size_t MaxPrimitives = 100000;
 
 /// Parses and validates (every primitive is built) a .pisurf text.
 bool ParseModel(const std::string& text, Model& model, std::string& error);
 /// Writes a model as .pisurf JSON that ParseModel reads back to the same function.
 std::string WriteModel(const Model& model);
-/// Checks bounds: six finite numbers with x0 < x1, y0 < y1, z0 < z1.
+/// Checks bounds: six finite numbers with x0 < x1, y0 < y1, z0 < z1 and finite sides.
 bool ValidBounds(const double b[6]);
 
 /// The product of several models (the ParaView "Pi Product"): their primitives in

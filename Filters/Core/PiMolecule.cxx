@@ -242,6 +242,29 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
       box[2 * a + 1] = std::max(box[2 * a + 1], this->Centers[3 * i + a] + this->Reach(i));
     }
   }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!std::isfinite(box[2 * a + 1] - box[2 * a]))
+    {
+      throw std::invalid_argument("MoleculeField: the atoms and region span a non-finite extent");
+    }
+  }
+  // Cells of CellSize, coarser if there would be more than MaxCells of them (atoms far
+  // apart): the far-field bound is computed per cell, so any size is correct, and the
+  // cells' memory (about 150 bytes each) stays bounded.
+  constexpr double MaxCells = double(1 << 21);
+  auto cellCount = [&](double size) {
+    double n = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      n *= std::ceil((box[2 * a + 1] - box[2 * a]) / size) + 1;
+    }
+    return n;
+  };
+  while (cellCount(this->Settings.CellSize) > MaxCells)
+  {
+    this->Settings.CellSize *= 2;
+  }
   const double s = this->Settings.CellSize;
   for (int a = 0; a < 3; ++a)
   {

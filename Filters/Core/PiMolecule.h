@@ -8,7 +8,8 @@
  * F = Π g_i − level, in one of two modes:
  *
  * Global (the paper's surface): g_i = f_i, level = r. Every atom multiplies the product.
- *   Evaluation: space is cut into cubic cells of CellSize (2 Å). For a cell, the atoms
+ *   Evaluation: space is cut into cubic cells of CellSize (2 Å; doubled until there are
+ *   at most 2^21 cells, for atoms spread far apart). For a cell, the atoms
  *   whose centre lies within R_i + NearDistance (3 Å) of the cell's box are "near" and
  *   enter exactly; the others are "far" and enter through the second-order Taylor
  *   polynomial T of L(p) = Σ_far ln f_j(p) about the cell's centre (their f_j > 0, so

@@ -186,16 +186,40 @@ Polynomial3 Polynomial3::operator-(const Polynomial3& o) const
 
 Polynomial3 Polynomial3::operator*(const Polynomial3& o) const
 {
+  // The products are summed in a dense (i, j, k) table, not sorted: sorting all n·m
+  // products made (x+y+z+1)^64 take 16 s (found by ./run fuzz expression); the table
+  // has at most 65³ entries and is read out in TermLess order.
   Polynomial3 r;
-  r.Terms.reserve(this->Terms.size() * o.Terms.size());
+  if (this->Terms.empty() || o.Terms.empty())
+  {
+    r.Summarize();
+    return r;
+  }
+  int n[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = this->GetAxisDegree(a) + o.GetAxisDegree(a) + 1;
+  }
+  std::vector<double> table(size_t(n[0]) * n[1] * n[2], 0.0);
   for (const auto& a : this->Terms)
   {
     for (const auto& b : o.Terms)
     {
-      r.Terms.push_back({ a.Coefficient * b.Coefficient, a.I + b.I, a.J + b.J, a.K + b.K });
+      const size_t at = (size_t(a.I + b.I) * n[1] + (a.J + b.J)) * n[2] + (a.K + b.K);
+      table[at] += a.Coefficient * b.Coefficient;
     }
   }
-  r.Finish();
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k)
+      {
+        const size_t at = (size_t(i) * n[1] + j) * n[2] + k;
+        if (table[at] != 0.0)
+        {
+          r.Terms.push_back({ table[at], i, j, k });
+        }
+      }
+  r.Summarize();
   return r;
 }
 
