@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -364,8 +365,29 @@ bool ParseExpression(const std::string& text, const ParameterMap& parameters,
   }
 }
 
+namespace
+{
+// Outward rounding: one ulp beyond each end (a rounded +, − or × is within half an ulp).
+Interval Outward(double lo, double hi)
+{
+  return { std::nextafter(lo, -HUGE_VAL), std::nextafter(hi, HUGE_VAL) };
+}
+// x^n by IntegerPower (at most 2·log2(n) + 1 roundings), widened by 2n ulps relative.
+double PowerDown(double x, int n)
+{
+  const double v = IntegerPower(x, n);
+  return v - std::fabs(v) * 2.0 * n * DBL_EPSILON - DBL_MIN;
+}
+double PowerUp(double x, int n)
+{
+  const double v = IntegerPower(x, n);
+  return v + std::fabs(v) * 2.0 * n * DBL_EPSILON + DBL_MIN;
+}
+}
+
 Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
 {
+  // Outward-rounded: an enclosure of the exact real value of the expression as written.
   switch (n.Type)
   {
     case ExpressionNode::Constant:
@@ -375,18 +397,18 @@ Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
     case ExpressionNode::Add:
     {
       const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
-      return { a.Lo + b.Lo, a.Hi + b.Hi };
+      return Outward(a.Lo + b.Lo, a.Hi + b.Hi);
     }
     case ExpressionNode::Subtract:
     {
       const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
-      return { a.Lo - b.Hi, a.Hi - b.Lo };
+      return Outward(a.Lo - b.Hi, a.Hi - b.Lo);
     }
     case ExpressionNode::Multiply:
     {
       const Interval a = EvaluateInterval(*n.A, box), b = EvaluateInterval(*n.B, box);
       const double c[4] = { a.Lo * b.Lo, a.Lo * b.Hi, a.Hi * b.Lo, a.Hi * b.Hi };
-      return { std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+      return Outward(std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }));
     }
     case ExpressionNode::Negate:
     {
@@ -396,12 +418,20 @@ Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
     case ExpressionNode::Power:
     {
       const Interval a = EvaluateInterval(*n.A, box);
-      const double lo = IntegerPower(a.Lo, n.Exponent), hi = IntegerPower(a.Hi, n.Exponent);
-      if (n.Exponent % 2 == 0 && a.Lo < 0 && a.Hi > 0)
+      const int e = n.Exponent;
+      if (e == 0)
       {
-        return { 0.0, std::max(lo, hi) };
+        return { 1.0, 1.0 };
       }
-      return { std::min(lo, hi), std::max(lo, hi) };
+      if (e % 2 == 0 && a.Lo < 0 && a.Hi > 0)
+      {
+        return { 0.0, std::max(PowerUp(a.Lo, e), PowerUp(a.Hi, e)) };
+      }
+      // Monotone on the interval (odd power, or one sign): the ends' powers, outward.
+      const double p = IntegerPower(a.Lo, e), q = IntegerPower(a.Hi, e);
+      const double lo = p <= q ? PowerDown(a.Lo, e) : PowerDown(a.Hi, e);
+      const double hi = p <= q ? PowerUp(a.Hi, e) : PowerUp(a.Lo, e);
+      return { e % 2 == 0 ? std::max(0.0, lo) : lo, hi };
     }
   }
   return { -HUGE_VAL, HUGE_VAL };

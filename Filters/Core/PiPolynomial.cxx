@@ -2,6 +2,7 @@
 #include "PiPolynomial.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <tuple>
@@ -385,7 +386,15 @@ Polynomial3 Polynomial3::Derivative(int axis) const
   return r;
 }
 
-Interval Polynomial3::EvaluateInterval(const Interval box[3]) const
+double Polynomial3::RoundingBound(double magnitude) const
+{
+  // Each term: at most degree + 3 roundings; the sum: one per term. Times 64 for the
+  // row restrictions (binomial expansion about a row's middle) and double rounding.
+  const double operations = std::max(this->Degree, 0) + 4.0 + static_cast<double>(this->Terms.size());
+  return 64.0 * operations * DBL_EPSILON * magnitude;
+}
+
+Interval Polynomial3::EvaluateInterval(const Interval box[3], double* magnitude) const
 {
   Interval px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
   const int n = std::max(this->Degree, 0);
@@ -396,6 +405,7 @@ Interval Polynomial3::EvaluateInterval(const Interval box[3]) const
     pz[k] = PowerInterval(box[2], k);
   }
   Interval sum{ 0.0, 0.0 };
+  double size = 0.0;
   for (const auto& t : this->Terms)
   {
     const Interval m = Multiply(Multiply(px[t.I], py[t.J]), pz[t.K]);
@@ -404,9 +414,16 @@ Interval Polynomial3::EvaluateInterval(const Interval box[3]) const
       : Interval{ t.Coefficient * m.Hi, t.Coefficient * m.Lo };
     sum.Lo += c.Lo;
     sum.Hi += c.Hi;
+    size += std::max(std::fabs(c.Lo), std::fabs(c.Hi));
   }
-  // Rounding: widen by a relative ulp-scale margin so the enclosure stays safe.
-  const double slack = 1e-12 * (std::fabs(sum.Lo) + std::fabs(sum.Hi)) + 1e-300;
+  if (magnitude)
+  {
+    *magnitude = size;
+  }
+  // Rounding: widen by the rounding of the terms' magnitudes (see the header), at least
+  // a relative ulp-scale margin of the result.
+  const double slack =
+    std::max(1e-12 * (std::fabs(sum.Lo) + std::fabs(sum.Hi)), this->RoundingBound(size)) + 1e-300;
   return { sum.Lo - slack, sum.Hi + slack };
 }
 

@@ -71,7 +71,14 @@ public:
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// An enclosure of P over the box x ∈ box[0], y ∈ box[1], z ∈ box[2] (term-wise
   /// interval arithmetic; exact powers, so squares are never negative). Cost: O(terms).
-  Interval EvaluateInterval(const Interval box[3]) const;
+  /// It also holds every value our evaluations compute there (Evaluate, the gradient's
+  /// centre value, row restrictions): it is widened by RoundingBound(M), M = Σ|c_t|·
+  /// max|x^i y^j z^k| over the box, not by a fraction of the result, so terms that
+  /// cancel (1e48 − 1e48) cannot leave the rounding of their values outside. `magnitude`
+  /// (optional) receives M.
+  Interval EvaluateInterval(const Interval box[3], double* magnitude = nullptr) const;
+  /// A bound on the rounding error of evaluating P at a point where Σ|c_t·x^t| <= M.
+  double RoundingBound(double magnitude) const;
   /// ∂P/∂(axis) (exact).
   Polynomial3 Derivative(int axis) const;
   /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).

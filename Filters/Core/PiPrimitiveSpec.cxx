@@ -172,12 +172,18 @@ Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
     h += 1e-15 * (std::fabs(c) + h);
     local[i] = { c - h, c + h };
   }
-  Interval naive = this->Poly.EvaluateInterval(local);
+  double magnitude = 0.0;
+  Interval naive = this->Poly.EvaluateInterval(local, &magnitude);
   if (this->Natural)
   {
+    // The expression as written encloses the exact value; the expanded polynomial's
+    // computed values may differ from it by their rounding (terms that cancel), so the
+    // natural enclosure is widened by that before it narrows the naive one.
     const Interval n = pisurf::EvaluateInterval(*this->Natural, local);
     const double a = this->NaturalScale * n.Lo, b = this->NaturalScale * n.Hi;
-    const double slack = 1e-12 * (std::fabs(a) + std::fabs(b)) + 1e-300;
+    const double slack = std::max(1e-12 * (std::fabs(a) + std::fabs(b)),
+                           this->Poly.RoundingBound(magnitude)) +
+      1e-300;
     naive.Lo = std::max(naive.Lo, std::min(a, b) - slack);
     naive.Hi = std::min(naive.Hi, std::max(a, b) + slack);
   }

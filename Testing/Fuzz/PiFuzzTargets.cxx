@@ -67,10 +67,14 @@ void Expression(const uint8_t* data, size_t size)
   {
     Finding("accepted expression with non-finite coefficients or too high a degree", text);
   }
-  // The enclosure of the expression as written over [-1/2, 1/2]^3 must contain the
-  // expanded polynomial's value at a few points of the box (up to rounding).
+  // The enclosure of the expression as written over [-1/2, 1/2]^3 (outward-rounded: it
+  // holds the exact value) must contain the expanded polynomial's computed value at a
+  // few points of the box, up to that polynomial's rounding bound (terms that cancel).
   const Interval box[3] = { { -0.5, 0.5 }, { -0.5, 0.5 }, { -0.5, 0.5 } };
   const Interval range = EvaluateInterval(*tree, box);
+  double magnitude = 0.0;
+  p.EvaluateInterval(box, &magnitude);
+  const double rounding = p.RoundingBound(magnitude);
   const double points[3][3] = { { 0, 0, 0 }, { 0.5, -0.5, 0.25 }, { -0.3, 0.1, 0.5 } };
   for (const auto& q : points)
   {
@@ -79,7 +83,8 @@ void Expression(const uint8_t* data, size_t size)
     {
       continue; // overflow of huge coefficients: no containment to check
     }
-    const double slack = 1e-9 * (std::fabs(range.Lo) + std::fabs(range.Hi) + std::fabs(v) + 1);
+    const double slack =
+      rounding + 1e-9 * (std::fabs(range.Lo) + std::fabs(range.Hi) + std::fabs(v) + 1);
     if (v < range.Lo - slack || v > range.Hi + slack)
     {
       Finding("interval enclosure misses a value", text);
