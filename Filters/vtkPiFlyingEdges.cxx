@@ -204,6 +204,16 @@ struct Grid
   }
   // Cells [first, last) of block c along axis a.
   int First(const int c[3], int a) const { return c[a] * BlockCells; }
+  /// The middle of grid row `row` (= k·Dims[1] + j, along x): where the factors are
+  /// restricted to it, so that every block sees the same coefficients.
+  void RowMiddle(vtkIdType row, double o[3]) const
+  {
+    const int j = static_cast<int>(row % this->Dims[1]);
+    const int k = static_cast<int>(row / this->Dims[1]);
+    o[0] = this->Origin[0] + 0.5 * (this->Dims[0] - 1) * this->Spacing[0];
+    o[1] = this->Origin[1] + j * this->Spacing[1];
+    o[2] = this->Origin[2] + k * this->Spacing[2];
+  }
   int Last(const int c[3], int a) const
   {
     return std::min(c[a] * BlockCells + BlockCells, this->Dims[a] - 1);
@@ -313,14 +323,11 @@ struct RestrictRows
   {
     const size_t n = this->Kernel->GetLineCoefficientCount();
     const double step[3] = { this->G->Spacing[0], 0.0, 0.0 };
-    const double mid = 0.5 * (this->G->Dims[0] - 1);
     for (vtkIdType r = begin; r < end; ++r)
     {
       const vtkIdType row = (*this->Rows)[r];
-      const int j = static_cast<int>(row % this->G->Dims[1]);
-      const int k = static_cast<int>(row / this->G->Dims[1]);
-      const double o[3] = { this->G->Origin[0] + mid * this->G->Spacing[0],
-        this->G->Origin[1] + j * this->G->Spacing[1], this->G->Origin[2] + k * this->G->Spacing[2] };
+      double o[3];
+      this->G->RowMiddle(row, o);
       this->Kernel->RestrictLine(o, step, this->Coefficients->data() + r * n);
     }
   }
@@ -473,14 +480,11 @@ struct RestrictCachedRows
   {
     const size_t n = this->Kernel->GetLineCoefficientCount();
     const double step[3] = { this->G->Spacing[0], 0.0, 0.0 };
-    const double mid = 0.5 * (this->G->Dims[0] - 1);
     for (vtkIdType r = begin; r < end; ++r)
     {
       const vtkIdType row = (*this->Rows)[r];
-      const int j = static_cast<int>(row % this->G->Dims[1]);
-      const int k = static_cast<int>(row / this->G->Dims[1]);
-      const double o[3] = { this->G->Origin[0] + mid * this->G->Spacing[0],
-        this->G->Origin[1] + j * this->G->Spacing[1], this->G->Origin[2] + k * this->G->Spacing[2] };
+      double o[3];
+      this->G->RowMiddle(row, o);
       double* out = this->Coefficients->data() + r * n;
       for (size_t f = 0; f < this->Caches->size(); ++f)
       {
@@ -1017,9 +1021,6 @@ struct VertexAttributes
 
   double Refine(const double a[3], const double b[3], double t, double va, double vb) const
   {
-    // F itself is nearly linear along a short edge, and cheapest (its values at the ends
-    // are the grid's); where it is beyond 1e200 at an end, its compressed form
-    // sign(F)·ln(1 + |F|) is used instead.
     // A field that can certify the first root from the positive end in one pass (see
     // pisurf::Field::FirstRoot): the root nearest the outside, as the general method
     // below would pick.
@@ -1037,6 +1038,9 @@ struct VertexAttributes
         }
       }
     }
+    // F itself is nearly linear along a short edge, and cheapest (its values at the ends
+    // are the grid's); where it is beyond 1e200 at an end, its compressed form
+    // sign(F)·ln(1 + |F|) is used instead.
     bool compressed = false;
     auto phi = [&](const double x[3]) {
       return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);
@@ -1047,12 +1051,30 @@ struct VertexAttributes
       va = phi(a);
       vb = phi(b);
     }
+    auto pointAt = [&](double s, double x[3]) {
+      for (int k = 0; k < 3; ++k)
+      {
+        x[k] = a[k] + s * (b[k] - a[k]);
+      }
+    };
     auto along = [&](double s) {
-      const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
-        a[2] + s * (b[2] - a[2]) };
-      return phi(q);
+      double x[3];
+      pointAt(s, x);
+      return phi(x);
+    };
+    auto offOuterSide = [&](double s) {
+      double x[3];
+      pointAt(s, x);
+      return this->Kernel->OffOuterSide(x);
     };
     const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
+    // The root between s0 and s1 (either order), where F is f0 and f1 of opposite signs.
+    auto rootBetween = [&](double s0, double f0, double s1, double f1) {
+      const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+      const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
+      return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
+        1e-12 * std::max(std::fabs(flo), std::fabs(fhi)));
+    };
     // The first sign change stepping from the end `from` (0 or 1) towards the other:
     // the surface nearest that end; `from` itself if F keeps its sign at every step.
     auto firstCrossing = [&](double from) {
@@ -1068,20 +1090,12 @@ struct VertexAttributes
         }
         if ((f0 > 0) != (f1 > 0))
         {
-          const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-          const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
-          return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
-            1e-12 * std::max(std::fabs(flo), std::fabs(fhi)));
+          return rootBetween(s0, f0, s1, f1);
         }
         s0 = s1;
         f0 = f1;
       }
       return from;
-    };
-    auto offOuterSide = [&](double s) {
-      const double x[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
-        a[2] + s * (b[2] - a[2]) };
-      return this->Kernel->OffOuterSide(x);
     };
     // From the positive end `from` (on the outer side) to `to` (off it): where the edge
     // leaves the outer side, found by bisection; if F is negative just before it (the
@@ -1098,24 +1112,13 @@ struct VertexAttributes
       {
         return -1.0;
       }
-      // The root is before `out`, or (F huge: the surface hugs the wall) within the
-      // tolerance after it.
-      double s0 = from, f0 = fFrom, s1 = out, f1 = fOut;
-      if (!(fOut < 0))
+      if (fOut < 0)
       {
-        s0 = out;
-        f0 = fOut;
-        s1 = off;
-        f1 = along(off);
-        if (!(f1 < 0))
-        {
-          return out;
-        }
+        return rootBetween(from, fFrom, out, fOut);
       }
-      const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-      const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
-      return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
-        1e-12 * std::max(std::fabs(flo), std::fabs(fhi)));
+      // F huge (the surface hugs the wall): the root is within the tolerance after `out`.
+      const double fOff = along(off);
+      return fOff < 0 ? rootBetween(out, fOut, off, fOff) : out;
     };
     if ((va > 0 && vb > 0) || (va < 0 && vb < 0))
     {
@@ -1143,23 +1146,18 @@ struct VertexAttributes
     const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
     const double root =
       pisurf::BracketedRoot(along, 0.0, 1.0, va, vb, this->Tolerance / length, small);
-    if (this->PositiveEnvelope)
+    if (this->PositiveEnvelope && offOuterSide(root))
     {
-      const double x[3] = { a[0] + root * (b[0] - a[0]), a[1] + root * (b[1] - a[1]),
-        a[2] + root * (b[2] - a[2]) };
-      if (this->Kernel->OffOuterSide(x))
+      // A root of a bounded component's sheet (the edge runs outside, wall, lens, wall):
+      // the outer sheet is the crossing nearest the positive end.
+      const double from = va > 0 ? 0.0 : 1.0;
+      const double crossing = firstCrossing(from);
+      if (crossing != from && !offOuterSide(crossing))
       {
-        // A root of a bounded component's sheet (the edge runs outside, wall, lens,
-        // wall): the outer sheet is the crossing nearest the positive end.
-        const double from = va > 0 ? 0.0 : 1.0;
-        const double crossing = firstCrossing(from);
-        if (crossing != from && !offOuterSide(crossing))
-        {
-          return crossing;
-        }
-        const double outer = outerCrossing(from, root);
-        return outer >= 0 ? outer : root;
+        return crossing;
       }
+      const double outer = outerCrossing(from, root);
+      return outer >= 0 ? outer : root;
     }
     return root;
   }
