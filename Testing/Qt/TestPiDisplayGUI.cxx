@@ -6,6 +6,7 @@
 // solid grey over its Primitives port coloured by Factor; a Pi Product too; a Pi
 // Primitive stays opaque. The user's later changes stay: a hidden and re-shown surface
 // keeps them, and a .pvsm state file restores them instead of the defaults.
+#include "PiQtTestUtilities.h"
 #include "pqApplicationCore.h"
 #include "pqDataRepresentation.h"
 #include "pqObjectBuilder.h"
@@ -32,18 +33,6 @@
 
 namespace
 {
-int Failures = 0;
-
-#define CHECK(condition, message)                                                              \
-  do                                                                                           \
-  {                                                                                            \
-    if (!(condition))                                                                          \
-    {                                                                                          \
-      std::cerr << "FAILED line " << __LINE__ << ": " << message << "\n";                      \
-      ++Failures;                                                                              \
-    }                                                                                          \
-  } while (false)
-
 std::string ColorArray(vtkSMProxy* representation)
 {
   const char* name =
@@ -81,11 +70,9 @@ int main(int argc, char* argv[])
   QApplication app(qtArgc, qtArgv);
   pqApplicationCore core(qtArgc, qtArgv);
   pqObjectBuilder* builder = core.getObjectBuilder();
-  pqServer* server = builder->createServer(pqServerResource("builtin:"));
-  if (!server ||
-    !vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadLocalPlugin(plugin.c_str()))
+  pqServer* server = StartSession(builder, plugin);
+  if (!server)
   {
-    std::cerr << "cannot start a session or load " << plugin << "\n";
     return EXIT_FAILURE;
   }
   pqView* view = builder->createView("RenderView", server);

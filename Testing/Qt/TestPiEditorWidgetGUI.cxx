@@ -11,6 +11,7 @@
 // torus (handle), the "Show 3D widget" checkbox, the hidden panel, a change of the
 // property from outside, a destroyed view, another view and a deleted editor all do what
 // the editor's documentation says.
+#include "PiQtTestUtilities.h"
 #include "PiModel.h"
 
 #include "pqApplicationCore.h"
@@ -51,40 +52,6 @@
 
 namespace
 {
-int Failures = 0;
-
-#define CHECK(condition, message)                                                              \
-  do                                                                                           \
-  {                                                                                            \
-    if (!(condition))                                                                          \
-    {                                                                                          \
-      std::cerr << "FAILED line " << __LINE__ << ": " << message << "\n";                      \
-      ++Failures;                                                                              \
-    }                                                                                          \
-  } while (false)
-
-template <class T>
-T* Find(QWidget* root, const char* name)
-{
-  // Deleted parameter panels wait for the event loop: flush them first.
-  QCoreApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
-  auto* w = root->findChild<T*>(name);
-  if (!w)
-  {
-    std::cerr << "FAILED: no widget named " << name << "\n";
-    ++Failures;
-  }
-  return w;
-}
-
-void Type(QLineEdit* edit, const char* text)
-{
-  edit->setFocus();
-  edit->selectAll();
-  QTest::keyClicks(edit, text);
-  QTest::keyClick(edit, Qt::Key_Return);
-}
-
 bool Near(double a, double b, double tolerance = 1e-9)
 {
   return std::abs(a - b) <= tolerance;
@@ -136,10 +103,6 @@ bool Shown(vtkSMProxy* widget)
     vtkSMPropertyHelper(widget, "Enabled").GetAsInt() == 1;
 }
 
-std::string ModelText(vtkSMProxy* proxy)
-{
-  return vtkSMPropertyHelper(proxy, "Model").GetAsString();
-}
 
 bool Parse(vtkSMProxy* proxy, pisurf::Model& model)
 {
@@ -184,11 +147,9 @@ int main(int argc, char* argv[])
   QApplication app(qtArgc, qtArgv);
   pqApplicationCore core(qtArgc, qtArgv);
   pqObjectBuilder* builder = core.getObjectBuilder();
-  pqServer* server = builder->createServer(pqServerResource("builtin:"));
-  if (!server ||
-    !vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadLocalPlugin(plugin.c_str()))
+  pqServer* server = StartSession(builder, plugin);
+  if (!server)
   {
-    std::cerr << "cannot start a session or load " << plugin << "\n";
     return EXIT_FAILURE;
   }
 

@@ -7,6 +7,7 @@
 // drives them with QTest: add a torus, edit its minor radius, an invalid radius and an
 // odd superellipsoid exponent (both refused), duplicate / move / remove, and a change of
 // the property from outside. After each Apply it checks the Model JSON and the mesh.
+#include "PiQtTestUtilities.h"
 #include "PiModel.h"
 
 #include "pqApplicationCore.h"
@@ -40,18 +41,6 @@
 
 namespace
 {
-int Failures = 0;
-
-#define CHECK(condition, message)                                                              \
-  do                                                                                           \
-  {                                                                                            \
-    if (!(condition))                                                                          \
-    {                                                                                          \
-      std::cerr << "FAILED line " << __LINE__ << ": " << message << "\n";                      \
-      ++Failures;                                                                              \
-    }                                                                                          \
-  } while (false)
-
 // Records warnings, to check that a refused edit reaches ParaView's output window.
 class WarningRecorder : public vtkOutputWindow
 {
@@ -67,32 +56,6 @@ public:
 };
 vtkStandardNewMacro(WarningRecorder);
 
-template <class T>
-T* Find(QWidget* root, const char* name)
-{
-  // Deleted parameter panels wait for the event loop: flush them first.
-  QCoreApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
-  auto* w = root->findChild<T*>(name);
-  if (!w)
-  {
-    std::cerr << "FAILED: no widget named " << name << "\n";
-    ++Failures;
-  }
-  return w;
-}
-
-void Type(QLineEdit* edit, const char* text)
-{
-  edit->setFocus();
-  edit->selectAll();
-  QTest::keyClicks(edit, text);
-  QTest::keyClick(edit, Qt::Key_Return);
-}
-
-std::string ModelText(vtkSMProxy* proxy)
-{
-  return vtkSMPropertyHelper(proxy, "Model").GetAsString();
-}
 
 bool Parse(vtkSMProxy* proxy, pisurf::Model& model)
 {
@@ -131,11 +94,9 @@ int main(int argc, char* argv[])
   vtkOutputWindow::SetInstance(recorder);
 
   pqObjectBuilder* builder = core.getObjectBuilder();
-  pqServer* server = builder->createServer(pqServerResource("builtin:"));
-  if (!server ||
-    !vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadLocalPlugin(plugin.c_str()))
+  pqServer* server = StartSession(builder, plugin);
+  if (!server)
   {
-    std::cerr << "cannot start a session or load " << plugin << "\n";
     return EXIT_FAILURE;
   }
   pqPipelineSource* source = builder->createSource("sources", "PiSurface", server);
