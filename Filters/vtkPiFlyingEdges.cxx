@@ -1683,7 +1683,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   {
     this->MeshPrimitives(bounds, g.Dims, piece, pieces, primitives);
   }
-  if (vertices == 0)
+  // (One piece of several may be empty while the others are not: no warning then.)
+  if (vertices == 0 && pieces == 1)
   {
     vtkWarningMacro(<< "The Pi-surface does not cross the bounds [" << bounds[0] << ", "
                     << bounds[1] << "] x [" << bounds[2] << ", " << bounds[3] << "] x ["

@@ -9,6 +9,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -21,6 +22,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -953,6 +955,28 @@ void Triangulation::RunBestView(double sheetTolerance)
 }
 }
 
+int vtkPiImageTriangulator::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkPiImageTriangulator::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The views are merged and their seams closed across the whole lattice: every piece
+  // triangulates the whole cloud (piece 0 of 1 of the input) and keeps its share.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo)
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  return 1;
+}
+
 int vtkPiImageTriangulator::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -1435,8 +1459,60 @@ int vtkPiImageTriangulator::RequestData(
   unused->SetName("UnusedHits");
   unused->InsertNextValue(C.N - usedHits);
   output->GetFieldData()->AddArray(unused);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
+  if (pieces > 1)
+  {
+    KeepShare(output, piece, pieces);
+  }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+void vtkPiImageTriangulator::KeepShare(vtkPolyData* mesh, int piece, int pieces)
+{
+  // Piece p of n keeps the triangles [T p / n, T (p + 1) / n) of the whole mesh and the
+  // points they use (a point on the cut is in both pieces, at the same position).
+  const vtkIdType triangles = mesh->GetNumberOfPolys();
+  const vtkIdType first = triangles * piece / pieces, last = triangles * (piece + 1) / pieces;
+  std::vector<vtkIdType> map(mesh->GetNumberOfPoints(), -1);
+  vtkNew<vtkIdList> keep;
+  vtkNew<vtkCellArray> polys;
+  vtkCellArray* all = mesh->GetPolys();
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType t = first; t < last; ++t)
+  {
+    all->GetCellAtId(t, cell);
+    for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+    {
+      vtkIdType& id = map[cell->GetId(k)];
+      if (id < 0)
+      {
+        id = keep->GetNumberOfIds();
+        keep->InsertNextId(cell->GetId(k));
+      }
+      cell->SetId(k, id);
+    }
+    polys->InsertNextCell(cell);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(mesh->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(keep->GetNumberOfIds());
+  mesh->GetPoints()->GetPoints(keep, points);
+  vtkNew<vtkPointData> pd;
+  pd->CopyAllocate(mesh->GetPointData(), keep->GetNumberOfIds());
+  pd->CopyData(mesh->GetPointData(), keep);
+  vtkNew<vtkPolyData> share;
+  share->SetPoints(points);
+  share->SetPolys(polys);
+  share->GetPointData()->ShallowCopy(pd);
+  share->GetFieldData()->ShallowCopy(mesh->GetFieldData());
+  mesh->ShallowCopy(share);
 }
 
 void vtkPiImageTriangulator::PrintSelf(ostream& os, vtkIndent indent)

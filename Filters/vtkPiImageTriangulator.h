@@ -43,7 +43,13 @@
  * Output: triangles, point data `Normals` (the exact unit gradient), `Singular`,
  * `ViewIndex` (the view whose ray holds the vertex), `Factor`; field data
  * `PiSurfaceModel` (passed on), `BoundaryEdges` (edges used by one triangle: 0 for a
- * closed mesh), `UnusedHits` (hits that are not vertices).
+ * closed mesh), `UnusedHits` (hits that are not vertices), both of the whole mesh.
+ *
+ * Pieces (ParaView's MPI mode): the views are merged and their seams closed across the
+ * whole lattice, so every piece asks for the whole cloud (piece 0 of 1 of the input),
+ * triangulates it, and keeps the triangles [T p / n, T (p + 1) / n) of the T triangles
+ * and the points they use. The union of the pieces is the one-piece mesh; the work is
+ * not divided.
  *
  * @warning Needs the point arrays `PixelIndex`, `ViewIndex`, `Depth` and `Normals` and
  * the field data `PiRayViews` of vtkPiRayCaster; a cloud without them is an error.
@@ -96,7 +102,10 @@ protected:
   ~vtkPiImageTriangulator() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  static void KeepShare(vtkPolyData* mesh, int piece, int pieces);
 
   int MergeMode = AUTOMATIC;
   double SheetTolerance = 2.0;

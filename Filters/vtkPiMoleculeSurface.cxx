@@ -22,6 +22,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
@@ -60,11 +61,43 @@ int vtkPiMoleculeSurface::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+int vtkPiMoleculeSurface::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Pieces are the mesher's slabs of the grid (ParaView's MPI mode: one per rank).
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkPiMoleculeSurface::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // Every piece needs every atom (the grid, the far field and the envelope are the whole
+  // molecule's): ask for the whole input. Readers that do not split molecules (this
+  // plugin's, VTK's CML and XYZ readers, ParaView's PDB reader) give only their first
+  // piece a molecule, so each rank asks for that one.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo)
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  return 1;
+}
+
 int vtkPiMoleculeSurface::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
   if (!std::isfinite(this->Blending) || this->Blending < 0)
   {
     vtkErrorMacro(<< "Blending must be a finite number >= 0, not " << this->Blending);
@@ -381,7 +414,9 @@ int vtkPiMoleculeSurface::RequestData(
   });
   mesher->AddObserver(vtkCommand::ErrorEvent, forward);
   mesher->AddObserver(vtkCommand::WarningEvent, forward);
-  mesher->Update();
+  // Piece p of n: the mesher's slab p of the grid; the union of the pieces is the
+  // one-piece mesh.
+  mesher->UpdatePiece(piece, pieces, 0);
   if (!messages.Error.empty())
   {
     vtkErrorMacro(<< "Meshing failed: " << messages.Error);
@@ -442,7 +477,9 @@ int vtkPiMoleculeSurface::RequestData(
     json->InsertNextValue(pisurf::WriteModel(model));
     fd->AddArray(json);
   }
-  if (output->GetNumberOfCells() > 0)
+  // The area and volume of the whole surface (a piece's share of them would mislead:
+  // in parallel runs use Integrate Variables).
+  if (output->GetNumberOfCells() > 0 && pieces == 1)
   {
     vtkNew<vtkPolyData> mesh;
     mesh->ShallowCopy(output);

@@ -44,7 +44,12 @@
  * data `Normals`, `Factor` (index of the nearest atom) and `AtomicNumber`, and field data: `PiSurfaceModel`
  * (the Global model as .pisurf JSON, for molecules up to 10000 atoms, so that Pi Ray
  * Cast works downstream), `PiMoleculeCenters` and `PiMoleculeRadii` (the atoms, compact),
- * `SurfaceArea` and `EnclosedVolume` of the mesh.
+ * `SurfaceArea` and `EnclosedVolume` of the mesh (one-piece runs only).
+ *
+ * Pieces (ParaView's MPI mode): every piece reads the whole molecule (piece 0 of 1 of
+ * the input) and meshes its own slab of the grid; the union of the pieces is the
+ * one-piece mesh. A piece's field data has no SurfaceArea or EnclosedVolume then (a
+ * share would mislead): integrate the mesh (Integrate Variables) instead.
  *
  * Grid: `Spacing` in Å (default 0: automatic, 0.25 Å unless the grid would exceed 2^24
  * points, then the smallest spacing that fits). Bounds: the atoms' boxes grown until F
@@ -137,6 +142,8 @@ protected:
   ~vtkPiMoleculeSurface() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int RadiusTable = BONDI;

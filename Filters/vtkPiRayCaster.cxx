@@ -8,10 +8,14 @@
 
 #include "vtkCellArray.h"
 #include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkGarbageCollector.h"
+#include "vtkIdList.h"
+#include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkImageData.h"
@@ -178,6 +182,7 @@ struct CastRows
   const std::vector<std::vector<TileRange>>* Tiles; // per view; empty: no skipping
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
+  int RowBegin, RowEnd; // the image rows [RowBegin, RowEnd) of every view
 
   void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out,
     const pisurf::RayGrid* grid = nullptr, const std::vector<double>* row = nullptr) const
@@ -268,14 +273,10 @@ struct CastRows
       {
         return;
       }
-      // Rows are numbered view by view.
-      vtkIdType r = row;
-      size_t vi = 0;
-      while (r >= (*this->Views)[vi].H)
-      {
-        r -= (*this->Views)[vi].H;
-        ++vi;
-      }
+      // Rows are numbered view by view, RowEnd − RowBegin of them per view.
+      const vtkIdType perView = this->RowEnd - this->RowBegin;
+      const size_t vi = static_cast<size_t>(row / perView);
+      const vtkIdType r = this->RowBegin + row % perView;
       const View& v = (*this->Views)[vi];
       std::vector<Hit>& out = (*this->Rows)[row];
       const pisurf::RayGrid* grid = (*this->Grids)[vi].get();
@@ -318,6 +319,13 @@ int vtkPiRayCaster::RequestInformation(
     std::max(this->Resolution[1], 1) - 1, 0, views - 1 };
   vtkInformation* info = outputVector->GetInformationObject(1);
   info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  // Pieces (ParaView's MPI mode) are slabs of image rows, the same rows of every view:
+  // piece p of n casts rows [h p / n, h (p + 1) / n). The image port produces the same
+  // row slabs as sub-extents.
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  info->Set(
+    vtkExtentTranslator::UPDATE_SPLIT_MODE(), static_cast<int>(vtkExtentTranslator::Y_SLAB_MODE));
   return 1;
 }
 
@@ -552,8 +560,46 @@ int vtkPiRayCaster::RequestData(
   const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
     (b[5] - b[4]) * (b[5] - b[4]));
 
+  // This piece's rows of every view; the image port's requested rows widen the cast (the
+  // points keep to the piece, so the pieces' points do not overlap).
+  vtkInformation* pointInfo = outputVector->GetInformationObject(0);
+  const int piece = pointInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? pointInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces =
+    pointInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, pointInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
+  const int pieceBegin = static_cast<int>(vtkIdType(h) * piece / pieces);
+  const int pieceEnd = static_cast<int>(vtkIdType(h) * (piece + 1) / pieces);
+  int rowBegin = pieceBegin, rowEnd = pieceEnd;
+  vtkInformation* imageInfo = outputVector->GetInformationObject(1);
+  // Only a piece request on the image port itself (ParaView showing the image in
+  // parallel) widens the cast; its extent otherwise defaults to the whole image.
+  if (image && imageInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()) &&
+    imageInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) &&
+    imageInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) > 1)
+  {
+    int ue[6];
+    imageInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ue);
+    if (ue[2] <= ue[3])
+    {
+      rowBegin = std::min(rowBegin, std::max(ue[2], 0));
+      rowEnd = std::max(rowEnd, std::min(ue[3] + 1, h));
+    }
+  }
+  if (rowEnd <= rowBegin)
+  {
+    // More pieces than rows: this one is empty.
+    if (image)
+    {
+      image->Initialize();
+    }
+    return 1;
+  }
+
   // PASS 1: cast the rays, one image row per work item.
-  const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * h;
+  const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * (rowEnd - rowBegin);
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
   const pisurf::RayCaster caster(*kernel);
@@ -628,7 +674,7 @@ int vtkPiRayCaster::RequestData(
   }
   lap("tiles");
   CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &tiles, this,
-    &abort };
+    &abort, rowBegin, rowEnd };
   lap("setup");
   // Rows differ a lot in cost (the model covers the middle of the image): small chunks
   // keep the threads balanced.
@@ -640,12 +686,15 @@ int vtkPiRayCaster::RequestData(
   }
   this->UpdateProgress(0.8);
 
-  // PASS 2: the hits' attributes from the exact gradient.
+  // PASS 2: the hits' attributes from the exact gradient (of every hit the image
+  // shows; the points are then this piece's rows).
   std::vector<Hit> hits;
   for (auto& row : rows)
   {
     hits.insert(hits.end(), row.begin(), row.end());
   }
+  // In the one-piece case every hit is a point.
+  const bool extraRows = rowBegin != pieceBegin || rowEnd != pieceEnd;
   const vtkIdType n = static_cast<vtkIdType>(hits.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -704,20 +753,51 @@ int vtkPiRayCaster::RequestData(
   });
 
   lap("attributes");
+  vtkPointData* pd = output->GetPointData();
+  const std::vector<vtkDataArray*> arrays{ normals, gradient, depth, pixel, viewIndex, hitIndex,
+    singular, tangent, factor };
+  if (!extraRows)
+  {
+    output->SetPoints(points);
+    for (vtkDataArray* a : arrays)
+    {
+      pd->AddArray(a);
+    }
+  }
+  else
+  {
+    // The image needed rows beyond this piece's: the points are the piece's rows only.
+    vtkNew<vtkIdList> keep;
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      if (hits[k].J >= pieceBegin && hits[k].J < pieceEnd)
+      {
+        keep->InsertNextId(k);
+      }
+    }
+    vtkNew<vtkPoints> kept;
+    kept->SetDataTypeToDouble();
+    kept->SetNumberOfPoints(keep->GetNumberOfIds()); // GetPoints fills, does not allocate
+    points->GetPoints(keep, kept);
+    output->SetPoints(kept);
+    for (vtkDataArray* a : arrays)
+    {
+      vtkSmartPointer<vtkDataArray> part = vtk::TakeSmartPointer(a->NewInstance());
+      part->SetName(a->GetName());
+      part->SetNumberOfComponents(a->GetNumberOfComponents());
+      part->SetNumberOfTuples(keep->GetNumberOfIds());
+      a->GetTuples(keep, part);
+      pd->AddArray(part);
+    }
+  }
+  pd->SetActiveNormals("Normals");
+  const vtkIdType kept = output->GetNumberOfPoints();
   vtkNew<vtkCellArray> verts;
-  for (vtkIdType k = 0; k < n; ++k)
+  for (vtkIdType k = 0; k < kept; ++k)
   {
     verts->InsertNextCell(1, &k);
   }
-  output->SetPoints(points);
   output->SetVerts(verts);
-  vtkPointData* pd = output->GetPointData();
-  pd->SetNormals(normals);
-  for (vtkAbstractArray* a : std::vector<vtkAbstractArray*>{ gradient, depth, pixel, viewIndex,
-         hitIndex, singular, tangent, factor })
-  {
-    pd->AddArray(a);
-  }
 
   vtkNew<vtkDoubleArray> viewData;
   viewData->SetName("PiRayViews");
@@ -746,10 +826,26 @@ int vtkPiRayCaster::RequestData(
   lap("output");
   if (image)
   {
-    this->Shade(views, hits, normals, singular, image);
+    this->Shade(views, rowBegin, rowEnd, hits, normals, singular, image);
+    if (rowBegin != pieceBegin || rowEnd != pieceEnd)
+    {
+      // Rows beyond the piece (ghost rows asked by the image's consumer, or another
+      // split of the rows) are marked as ghosts: each pixel belongs to one piece.
+      vtkNew<vtkUnsignedCharArray> ghosts;
+      ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+      ghosts->SetNumberOfTuples(image->GetNumberOfPoints());
+      const vtkIdType rowsCast = rowEnd - rowBegin;
+      for (vtkIdType id = 0; id < ghosts->GetNumberOfTuples(); ++id)
+      {
+        const int j = rowBegin + static_cast<int>((id / w) % rowsCast);
+        ghosts->SetValue(id, j >= pieceBegin && j < pieceEnd ? 0
+            : vtkDataSetAttributes::DUPLICATEPOINT);
+      }
+      image->GetPointData()->AddArray(ghosts);
+    }
   }
   lap("shading");
-  if (n == 0)
+  if (n == 0 && pieces == 1)
   {
     vtkWarningMacro(<< "No ray hits the Pi-surface");
   }
@@ -757,12 +853,14 @@ int vtkPiRayCaster::RequestData(
   return 1;
 }
 
-void vtkPiRayCaster::Shade(const std::vector<View>& views, const std::vector<Hit>& hits,
-  vtkFloatArray* normals, vtkUnsignedCharArray* singular, vtkImageData* image)
+void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int rowEnd,
+  const std::vector<Hit>& hits, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
+  vtkImageData* image)
 {
-  const int w = this->Resolution[0], h = this->Resolution[1];
+  const int w = this->Resolution[0], h = rowEnd - rowBegin;
   const int count = static_cast<int>(views.size());
-  image->SetDimensions(w, h, count);
+  // Rows [rowBegin, rowEnd) of each view: the whole image, or this piece's slab of it.
+  image->SetExtent(0, w - 1, rowBegin, rowEnd - 1, 0, count - 1);
   image->SetOrigin(0, 0, 0);
   image->SetSpacing(1, 1, 1);
   vtkNew<vtkUnsignedCharArray> rgb;
@@ -782,7 +880,7 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, const std::vector<Hit
       continue;
     }
     const View& v = views[hit.View];
-    const vtkIdType id = (vtkIdType(hit.View) * h + hit.J) * w + hit.I;
+    const vtkIdType id = (vtkIdType(hit.View) * h + hit.J - rowBegin) * w + hit.I;
     depth->SetValue(id, hit.T);
     if (singular->GetValue(static_cast<vtkIdType>(k)))
     {

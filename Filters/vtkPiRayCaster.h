@@ -55,6 +55,12 @@
  * headlight, Lambert plus a Phong highlight from the exact normals; singular pixels
  * red; white where the ray misses) and `Depth` (−1 where it misses).
  *
+ * Pieces (ParaView's MPI mode): piece p of n casts the image rows [h p / n, h (p + 1) / n)
+ * of every view. Its points are the hits of those rows (the pieces' points together are
+ * the one-piece output) and its image is that row slab (extent [0, w−1, row0, row1−1,
+ * 0, views−1]; the image port splits in Y slabs). A request for image rows beyond the
+ * piece widens the cast, never the points.
+ *
  * Speed (polynomial products): orthographic views (axis and parallel camera) restrict
  * their rays from one composition of each factor per view (pisurf::RayGrid, about the
  * grid centre and the middle of the box, which is also more accurate than restricting
@@ -194,7 +200,7 @@ protected:
 private:
 #ifndef __VTK_WRAP__
   // Output port 1: the shaded first hits and their depth, one slice per view.
-  void Shade(const std::vector<vtkPiRayCasterDetail::View>& views,
+  void Shade(const std::vector<vtkPiRayCasterDetail::View>& views, int rowBegin, int rowEnd,
     const std::vector<vtkPiRayCasterDetail::Hit>& hits, vtkFloatArray* normals,
     vtkUnsignedCharArray* singular, vtkImageData* image);
 #endif
