@@ -17,6 +17,7 @@
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMViewProxy.h"
 #include "vtkSmartPointer.h"
+#include "vtkTransform.h"
 #include "vtkWeakPointer.h"
 
 #include <QPointer>
@@ -46,6 +47,33 @@ void Settle(double& value, double fromWidget)
   {
     value = fromWidget;
   }
+}
+
+// The box widget turns by Euler angles in degrees, as vtkProp3D and vtkPVTransform do:
+// R = Rz(c) Rx(a) Ry(b) for Rotation (a, b, c). A primitive turns by an axis and an
+// angle (PrimitiveSpec::RotationAxis, RotationAngle): world = centre + R local.
+void EulerOf(const pisurf::PrimitiveSpec& spec, double euler[3])
+{
+  vtkNew<vtkTransform> t;
+  if (spec.Orient == Orientation::Rotation)
+  {
+    t->RotateWXYZ(spec.RotationAngle, spec.RotationAxis);
+  }
+  t->GetOrientation(euler);
+}
+
+// Euler angles to the primitive's axis and angle; false for no rotation.
+bool AxisAngleOf(const double euler[3], double axis[3], double& angle)
+{
+  vtkNew<vtkTransform> t;
+  t->RotateZ(euler[2]);
+  t->RotateX(euler[0]);
+  t->RotateY(euler[1]);
+  double wxyz[4];
+  t->GetOrientationWXYZ(wxyz);
+  angle = wxyz[0];
+  std::copy(wxyz + 1, wxyz + 4, axis);
+  return std::abs(angle) > 1e-9 && (axis[0] != 0 || axis[1] != 0 || axis[2] != 0);
 }
 
 void Get3(vtkSMProxy* proxy, const char* name, double v[3])
@@ -130,12 +158,12 @@ public:
     const double unit[6] = { -1, 1, -1, 1, -1, 1 };
     if (kind == Kind::Box)
     {
-      // The box is the reference box [-1, 1]^3 scaled by Scale and moved to Position,
-      // so Scale holds the semi-axes; no rotation (the model's orientation is typed).
+      // The box is the reference box [-1, 1]^3 scaled by Scale, turned by Rotation and
+      // moved to Position: Scale holds the semi-axes, Rotation the orientation.
       vtkSMPropertyHelper(widget, "UseReferenceBounds").Set(1);
       vtkSMPropertyHelper(widget, "ReferenceBounds").Set(unit, 6);
       vtkSMPropertyHelper(widget, "PlaceWidget").Set(unit, 6);
-      vtkSMPropertyHelper(widget, "RotationEnabled").Set(0);
+      vtkSMPropertyHelper(widget, "RotationEnabled").Set(1);
       const double none[3] = { 0, 0, 0 };
       Set3(widget, "Rotation", none);
     }
@@ -178,9 +206,14 @@ public:
         widget->UpdateProperty("Radius", 1);
         break;
       case Kind::Box:
+      {
+        double euler[3];
+        EulerOf(spec, euler);
         Set3(widget, "Position", spec.Center);
+        Set3(widget, "Rotation", euler);
         Set3(widget, "Scale", spec.Radii);
         break;
+      }
       case Kind::Handle:
         Set3(widget, "WorldPosition", spec.Center);
         break;
@@ -219,7 +252,8 @@ Kind pqPiPrimitive3DWidget::kindOf(const pisurf::PrimitiveSpec& spec)
       return Kind::Sphere;
     case PrimitiveType::Ellipsoid:
     case PrimitiveType::Superellipsoid:
-      return spec.Orient == Orientation::Default ? Kind::Box : Kind::Handle;
+      // (An Axis orientation picks its own frame about the axis: a handle.)
+      return spec.Orient != Orientation::Axis ? Kind::Box : Kind::Handle;
     default:
       return Kind::Handle;
   }
@@ -304,9 +338,35 @@ bool pqPiPrimitive3DWidget::readPrimitive(pisurf::PrimitiveSpec& spec) const
       Settle(spec.Radius, vtkSMPropertyHelper(widget, "RadiusInfo").GetAsDouble());
       return true;
     case Kind::Box:
+    {
       Get3(widget, "PositionInfo", spec.Center);
       Get3(widget, "ScaleInfo", spec.Radii);
+      // The orientation changes only if the box turned (the angles out of the widget's
+      // matrix carry round-off; an untouched rotation keeps its typed axis and angle).
+      double current[3], turned[3];
+      EulerOf(spec, current);
+      vtkSMPropertyHelper(widget, "RotationInfo").Get(turned, 3);
+      bool same = true;
+      for (int i = 0; i < 3; ++i)
+      {
+        same = same && std::abs(turned[i] - current[i]) <= 1e-9 * std::max(1.0, std::abs(current[i]));
+      }
+      if (!same)
+      {
+        double axis[3], angle = 0;
+        if (AxisAngleOf(turned, axis, angle))
+        {
+          spec.Orient = Orientation::Rotation;
+          std::copy(axis, axis + 3, spec.RotationAxis);
+          spec.RotationAngle = angle;
+        }
+        else if (spec.Orient == Orientation::Rotation)
+        {
+          spec.RotationAngle = 0;
+        }
+      }
       return true;
+    }
     case Kind::Handle:
       Get3(widget, "WorldPositionInfo", spec.Center);
       return true;

@@ -8,10 +8,13 @@
  * widgets" of the `representations` group) that the "Pi Primitive" source uses through
  * its PropertyGroups:
  * - a sphere: SphereWidgetRepresentation, Center and Radius;
- * - an ellipsoid or a superellipsoid in the default orientation: BoxWidgetRepresentation
- *   over the reference box [-1, 1]^3, Position = Center and Scale = Radii (rotation
- *   off: the box is the primitive's bounding box);
- * - any other primitive, or a rotated one: HandleWidgetRepresentation at its Center.
+ * - an ellipsoid or a superellipsoid, unrotated or turned by a rotation:
+ *   BoxWidgetRepresentation over the reference box [-1, 1]^3, Position = Center,
+ *   Scale = Radii and Rotation = the primitive's rotation as the widget's Euler angles
+ *   (vtkProp3D's R = Rz Rx Ry); turning the box sets the primitive's RotationAxis and
+ *   RotationAngle (orientation Rotation);
+ * - any other primitive, or one oriented by an Axis: HandleWidgetRepresentation at its
+ *   Center.
  *
  * The widget proxy is created on demand in the session of the edited proxy, added to
  * the view's HiddenRepresentations (not a pipeline representation: no state, no undo),
@@ -68,7 +71,7 @@ public:
   void show(const pisurf::PrimitiveSpec* spec, pqView* view, bool active);
 
   /// Copies the widget's current placement into `spec` (the centre, and the radius or
-  /// the semi-axes); false without a widget.
+  /// the semi-axes and the rotation); false without a widget.
   bool readPrimitive(pisurf::PrimitiveSpec& spec) const;
 
   /// The current widget proxy (nullptr when none), its kind, and whether it is shown.

@@ -7,7 +7,8 @@
 // a move of the widget (its proxy changed and its VTK widget's interaction events fired,
 // then real mouse drags through the view's interactor: the left button moves the sphere,
 // the right button scales it) edits the row and, on Apply, the
-// Model JSON; a typed radius moves the widget; another row, an ellipsoid (box widget), a
+// Model JSON; a typed radius moves the widget; another row, an ellipsoid (box widget:
+// scaled, turned, and turned by a typed rotation), a
 // torus (handle), the "Show 3D widget" checkbox, the hidden panel, a change of the
 // property from outside, a destroyed view, another view and a deleted editor all do what
 // the editor's documentation says.
@@ -337,6 +338,38 @@ int main(int argc, char* argv[])
     // The untouched centre keeps its typed value exactly (no round-off from the box).
     CHECK(Near3(model.Primitives[1].Center, -0.9, 0, 0, 0),
       "the centre stays -0.9 exactly: " << ModelText(proxy));
+    CHECK(model.Primitives[1].Orient == pisurf::Orientation::Default,
+      "an unturned box leaves the orientation alone: " << ModelText(proxy));
+
+    // Turning the box turns the ellipsoid: 30 degrees about z (Rotation is the widget's
+    // Euler angles, vtkProp3D's Rz Rx Ry).
+    const double turned[3] = { 0, 0, 30 };
+    vtkSMPropertyHelper(box, "Rotation").Set(turned, 3);
+    box->UpdateVTKObjects();
+    box->GetWidget()->InvokeEvent(vtkCommand::StartInteractionEvent);
+    box->GetWidget()->InvokeEvent(vtkCommand::EndInteractionEvent);
+    CHECK(Find<QComboBox>(panel, "PiParameter_Orientation")->currentIndex() == 2,
+      "the orientation field says Rotation");
+    apply();
+    {
+      const pisurf::PrimitiveSpec* e =
+        Parse(proxy, model) && model.Primitives.size() == 2 ? &model.Primitives[1] : nullptr;
+      CHECK(e && e->Orient == pisurf::Orientation::Rotation &&
+          Near(e->RotationAngle * (e->RotationAxis[2] > 0 ? 1 : -1), 30, 1e-6) &&
+          Near3(e->RotationAxis, 0, 0, e->RotationAxis[2] > 0 ? 1 : -1, 1e-9) &&
+          Near3(e->Radii, 1.5, 0.5, 2, 1e-6) && Near3(e->Center, -0.9, 0, 0, 0),
+        "the turned box is the ellipsoid rotated 30 degrees about z: " << ModelText(proxy));
+    }
+    // Typing a rotation turns the box: 90 degrees about x.
+    Type(Find<QLineEdit>(panel, "PiParameter_RotationAxis_0"), "1");
+    Type(Find<QLineEdit>(panel, "PiParameter_RotationAxis_2"), "0");
+    Type(Find<QLineEdit>(panel, "PiParameter_RotationAngle"), "90");
+    double euler[3];
+    box->UpdatePropertyInformation();
+    vtkSMPropertyHelper(box, "RotationInfo").Get(euler, 3);
+    CHECK(Near3(euler, 90, 0, 0, 1e-6),
+      "a typed rotation of 90 degrees about x turns the box: " << Str3(euler));
+    apply();
   }
   // The picture for the README: the editor and the box widget on the ellipsoid, seen
   // from above the x-z plane.
