@@ -4,8 +4,10 @@
 #include "PiPrimitiveSpec.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -42,6 +44,54 @@ void vtkPiPrimitive::Modified()
   this->Superclass::Modified();
 }
 
+namespace
+{
+// Turns `s` by the Euler angles `euler` (degrees, R = Rz·Rx·Ry as vtkProp3D) after its
+// own orientation: the composed rotation as one axis and angle. A spec whose own
+// orientation is invalid is left alone (its build reports it).
+void ComposeOrientation(const double euler[3], pisurf::PrimitiveSpec& s)
+{
+  if (!std::isfinite(euler[0]) || !std::isfinite(euler[1]) || !std::isfinite(euler[2]))
+  {
+    // Reported by the build: a rotation that cannot be evaluated.
+    s.Orient = pisurf::Orientation::Rotation;
+    s.RotationAngle = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  double local[3][3];
+  std::string error;
+  if (!pisurf::OrientationMatrix(s, local, error))
+  {
+    return;
+  }
+  const double x[3] = { 1, 0, 0 }, y[3] = { 0, 1, 0 }, z[3] = { 0, 0, 1 };
+  double Rx[3][3], Ry[3][3], Rz[3][3], E[3][3], C[3][3];
+  pisurf::RotationMatrix(x, euler[0], Rx);
+  pisurf::RotationMatrix(y, euler[1], Ry);
+  pisurf::RotationMatrix(z, euler[2], Rz);
+  vtkMath::Multiply3x3(Rz, Rx, E);
+  vtkMath::Multiply3x3(E, Ry, E);
+  // World from local: E·localᵀ (local's rows are the local axes).
+  double T[3][3];
+  vtkMath::Transpose3x3(local, T);
+  vtkMath::Multiply3x3(E, T, C);
+  double q[4]; // w, x, y, z
+  vtkMath::Matrix3x3ToQuaternion(C, q);
+  const double sine = std::sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(sine > 0.0))
+  {
+    s.Orient = pisurf::Orientation::Default;
+    return;
+  }
+  s.Orient = pisurf::Orientation::Rotation;
+  s.RotationAngle = vtkMath::DegreesFromRadians(2.0 * std::atan2(sine, q[0]));
+  for (int k = 0; k < 3; ++k)
+  {
+    s.RotationAxis[k] = q[k + 1] / sine;
+  }
+}
+}
+
 pisurf::PrimitiveSpec vtkPiPrimitive::GetSpec()
 {
   pisurf::PrimitiveSpec s;
@@ -75,6 +125,10 @@ pisurf::PrimitiveSpec vtkPiPrimitive::GetSpec()
   s.Expression = this->Internals->Expression;
   s.Scale = this->Scale;
   s.Negate = this->Negate;
+  if (this->Orientation[0] != 0.0 || this->Orientation[1] != 0.0 || this->Orientation[2] != 0.0)
+  {
+    ComposeOrientation(this->Orientation, s);
+  }
   return s;
 }
 
@@ -87,6 +141,7 @@ void vtkPiPrimitive::SetSpec(const pisurf::PrimitiveSpec& s)
   std::copy(z, z + 3, this->Axis);
   std::copy(z, z + 3, this->RotationAxis);
   this->RotationAngle = 0.0;
+  std::fill(this->Orientation, this->Orientation + 3, 0.0);
   if (s.Orient == pisurf::Orientation::Axis)
   {
     std::copy(s.Axis, s.Axis + 3, this->Axis);
@@ -125,6 +180,12 @@ std::shared_ptr<const pisurf::PolynomialFactor> vtkPiPrimitive::GetPolynomialFac
         if (this->RotationAngle != 0.0 && axisSet)
         {
           in.Error = "set either Axis or RotationAxis/RotationAngle, not both";
+          in.Valid = false;
+        }
+        else if (!std::isfinite(this->Orientation[0]) || !std::isfinite(this->Orientation[1]) ||
+          !std::isfinite(this->Orientation[2]))
+        {
+          in.Error = "Orientation must be three finite angles in degrees";
           in.Valid = false;
         }
         else if (pisurf::BuildFactor(spec, in.Parameters, *f, in.Error))
@@ -333,6 +394,8 @@ void vtkPiPrimitive::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RotationAxis: (" << this->RotationAxis[0] << ", " << this->RotationAxis[1]
      << ", " << this->RotationAxis[2] << ")\n";
   os << indent << "RotationAngle: " << this->RotationAngle << "\n";
+  os << indent << "Orientation: (" << this->Orientation[0] << ", " << this->Orientation[1]
+     << ", " << this->Orientation[2] << ")\n";
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "Radii: (" << this->Radii[0] << ", " << this->Radii[1] << ", "
      << this->Radii[2] << ")\n";

@@ -24,6 +24,7 @@
  *
  * Orientation: by default w is +z. Set Axis to point w elsewhere, or RotationAxis and
  * RotationAngle (degrees, right-handed, about Center) to rotate the primitive; not both.
+ * Orientation (Euler angles, as a box widget's Rotation) turns it further.
  * Scale multiplies the polynomial and Negate flips its sign (the paper's inverted
  * primitives for depressions and concavities).
  *
@@ -122,6 +123,16 @@ public:
   vtkGetVector3Macro(RotationAxis, double);
   vtkSetMacro(RotationAngle, double);
   vtkGetMacro(RotationAngle, double);
+  ///@}
+
+  ///@{
+  /// A further turn about Center by Euler angles in degrees (default 0,0,0), as
+  /// vtkProp3D's Orientation, ParaView's Transform and its box widget use them:
+  /// R = Rz(z)·Rx(x)·Ry(y). It turns the
+  /// primitive after Axis or RotationAxis/RotationAngle have placed it (the model then
+  /// holds the composed rotation as one axis and angle).
+  vtkSetVector3Macro(Orientation, double);
+  vtkGetVector3Macro(Orientation, double);
   ///@}
 
   ///@{
@@ -232,6 +243,7 @@ protected:
   double Axis[3] = { 0, 0, 1 };
   double RotationAxis[3] = { 0, 0, 1 };
   double RotationAngle = 0.0;
+  double Orientation[3] = { 0, 0, 0 };
   double Radius = 1.0;
   double Radii[3] = { 1, 1, 1 };
   double MajorRadius = 1.0;

@@ -151,6 +151,14 @@ double vtkPiPrimitiveSource::GetRotationAngle()
 {
   return this->Primitive->GetRotationAngle();
 }
+void vtkPiPrimitiveSource::SetOrientation(double x, double y, double z)
+{
+  this->Primitive->SetOrientation(x, y, z);
+}
+double* vtkPiPrimitiveSource::GetOrientation()
+{
+  return this->Primitive->GetOrientation();
+}
 void vtkPiPrimitiveSource::SetExpression(const char* expression)
 {
   this->Primitive->SetExpression(expression);

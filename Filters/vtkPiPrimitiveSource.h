@@ -81,6 +81,9 @@ public:
   double* GetRotationAxis() VTK_SIZEHINT(3);
   void SetRotationAngle(double degrees);
   double GetRotationAngle();
+  void SetOrientation(double x, double y, double z);
+  void SetOrientation(const double a[3]) { this->SetOrientation(a[0], a[1], a[2]); }
+  double* GetOrientation() VTK_SIZEHINT(3);
   void SetExpression(const char* expression);
   const char* GetExpression();
   void SetScale(double s);

@@ -242,28 +242,15 @@ Polynomial3 PolynomialFactor::WorldPolynomial() const
   return this->Poly.Compose(this->A, this->B);
 }
 
-bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
-  PolynomialFactor& factor, std::string& error)
+bool OrientationMatrix(const PrimitiveSpec& s, double R[3][3], std::string& error)
 {
-  const int type = static_cast<int>(s.Type);
-  if (type < 0 || type >= static_cast<int>(PrimitiveType::NumberOfTypes))
+  for (int i = 0; i < 3; ++i)
   {
-    error = "unknown primitive type";
-    return false;
+    for (int j = 0; j < 3; ++j)
+    {
+      R[i][j] = i == j ? 1.0 : 0.0;
+    }
   }
-  if (!Finite3(s.Center))
-  {
-    error = "center must be three finite numbers";
-    return false;
-  }
-  if (!std::isfinite(s.Scale) || s.Scale == 0.0)
-  {
-    error = "scale must be a non-zero finite number";
-    return false;
-  }
-
-  // Orientation: local = R·(p − center).
-  double R[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
   if (s.Orient == Orientation::Axis)
   {
     if (!Finite3(s.Axis) || Norm(s.Axis) == 0.0)
@@ -294,6 +281,35 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
         R[i][j] = Rot[j][i]; // inverse of a rotation is its transpose
       }
     }
+  }
+  return true;
+}
+
+bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
+  PolynomialFactor& factor, std::string& error)
+{
+  const int type = static_cast<int>(s.Type);
+  if (type < 0 || type >= static_cast<int>(PrimitiveType::NumberOfTypes))
+  {
+    error = "unknown primitive type";
+    return false;
+  }
+  if (!Finite3(s.Center))
+  {
+    error = "center must be three finite numbers";
+    return false;
+  }
+  if (!std::isfinite(s.Scale) || s.Scale == 0.0)
+  {
+    error = "scale must be a non-zero finite number";
+    return false;
+  }
+
+  // Orientation: local = R·(p − center).
+  double R[3][3];
+  if (!OrientationMatrix(s, R, error))
+  {
+    return false;
   }
 
   auto radii = [&](int n) {

@@ -137,6 +137,10 @@ bool BuildFactor(const PrimitiveSpec& spec, const ParameterMap& parameters,
 
 /// Rotation matrix of `angleDeg` degrees about `axis` (need not be unit), right-handed.
 void RotationMatrix(const double axis[3], double angleDeg, double R[3][3]);
+/// The primitive's local frame from its orientation: local = R·(p − center), so the
+/// rows of R are the local axes in world coordinates. False, naming the parameter, for
+/// a zero or non-finite axis or angle.
+bool OrientationMatrix(const PrimitiveSpec& spec, double R[3][3], std::string& error);
 }
 
 #endif

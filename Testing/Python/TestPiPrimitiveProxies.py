@@ -78,7 +78,7 @@ from pisurfaces import vtkPiPrimitiveSource, vtkPiProduct
 primitive = PiPrimitive()
 cxx = vtkPiPrimitiveSource()
 check(primitive.Type == "Sphere" and cxx.GetType() == 0, "Type default")
-for name in ("Center", "Radii", "Normal", "Axis", "RotationAxis", "Bounds"):
+for name in ("Center", "Radii", "Normal", "Axis", "RotationAxis", "Orientation", "Bounds"):
     check(list(primitive.GetPropertyValue(name)) == list(getattr(cxx, "Get" + name)()),
           name + " default")
 for name in ("Radius", "MajorRadius", "MinorRadius", "Exponent", "Angle", "RotationAngle",
@@ -140,6 +140,42 @@ same_mesh(plain, flipped, "Negate and Scale keep the surface")
 check(plain.GetPointData().GetArray("Normals").GetTuple3(0)[0] ==
       -flipped.GetPointData().GetArray("Normals").GetTuple3(0)[0], "Negate flips the normals")
 
+# --- Orientation: Euler angles (the box widget's Rotation) turn the primitive further ------
+from pisurfaces import vtkPiSurface
+
+
+def factor_at(source, point):
+    """The primitive's own f at a point, from the model its output carries."""
+    surface = vtkPiSurface()
+    check(surface.SetModelJSON(json.dumps(model_of(servermanager.Fetch(source)))),
+          "the model loads")
+    return surface.EvaluateFunction(point)
+
+
+# An ellipsoid turned 90 degrees about z by Orientation is the one turned by
+# RotationAxis/RotationAngle: its long semi-axis (2) now lies along y.
+turned = PiPrimitive(Type="Ellipsoid", Radii=[2, 1, 0.5], Orientation=[0, 0, 90], Resolution=40)
+rotated = PiPrimitive(Type="Ellipsoid", Radii=[2, 1, 0.5], RotationAxis=[0, 0, 1],
+                      RotationAngle=90, Resolution=40)
+same_mesh(servermanager.Fetch(turned), servermanager.Fetch(rotated),
+          "Orientation 0 0 90 = a rotation of 90 degrees about z")
+check(abs(factor_at(turned, [0, 2, 0])) < 1e-12 and abs(factor_at(turned, [2, 0, 0]) - 3) < 1e-12,
+      "turned ellipsoid: (0, 2, 0) on it, (2, 0, 0) outside (f = 3): %g, %g"
+      % (factor_at(turned, [0, 2, 0]), factor_at(turned, [2, 0, 0])))
+# The Euler order is vtkProp3D's, R = Rz Rx Ry: x 90 then z 90 takes the local w axis
+# (the long one, 2) to Rz(90) Rx(90) (0, 0, 1) = Rz(90) (0, -1, 0) = (1, 0, 0).
+euler = PiPrimitive(Type="Ellipsoid", Radii=[0.5, 1, 2], Orientation=[90, 0, 90], Resolution=24)
+check(abs(factor_at(euler, [2, 0, 0])) < 1e-12, "Euler order Rz Rx Ry: w ends along x (f = %g)"
+      % factor_at(euler, [2, 0, 0]))
+# After an Axis: a cylinder along x turned 90 degrees about z runs along y.
+cylinder = PiPrimitive(Type="Cylinder", Radius=0.5, Axis=[1, 0, 0], Orientation=[0, 0, 90],
+                       Resolution=24)
+check(abs(factor_at(cylinder, [0.5, 7, 0])) < 1e-12 and
+      abs(factor_at(cylinder, [0, 0.3, 0]) + 0.25) < 1e-12,
+      "cylinder: Axis x, then Orientation z 90, runs along y")
+for proxy in (turned, rotated, euler, cylinder):
+    Delete(proxy)
+
 # --- Bad values: an error naming the parameter, empty output ------------------------------
 bad = PiPrimitive(Type="Sphere")
 errors = Errors(bad)
@@ -149,10 +185,12 @@ for values, word in ((dict(Type="Sphere", Radius=-1), "radius"),
                      (dict(Type="Polynomial", Expression=""), "expression"),
                      (dict(Type="Torus", MinorRadius=0), "minor"),
                      (dict(Type="Cone", Angle=95), "angle"),
+                     (dict(Type="Ellipsoid", Orientation=[0, float("nan"), 0]), "orientation"),
                      (dict(Type="Sphere", Radius=1, Bounds=[1, 0, 0, 1, 0, 1]), "bounds")):
     bad.Type = "Sphere"
     bad.Radius = 1
     bad.Bounds = [0] * 6
+    bad.Orientation = [0, 0, 0]
     for k, v in values.items():
         bad.SetPropertyWithName(k, v)
     bad.UpdatePipeline()

@@ -4,7 +4,8 @@
  * @brief what the QTest ParaView clients of Testing/Qt share
  *
  * A failure counter with its CHECK macro, a builtin session with the plugin loaded,
- * widgets found by object name, typing into a field, and the Pi Surface's Model text.
+ * widgets found by object name, typing into a field, the Pi Surface's Model text, near
+ * comparisons, and ParaView's interactive widgets found in a view.
  * Each test is its own program: everything here is per translation unit.
  */
 #ifndef PiQtTestUtilities_h
@@ -13,6 +14,7 @@
 #include "pqObjectBuilder.h"
 #include "pqServer.h"
 #include "pqServerResource.h"
+#include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPluginManager.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
@@ -23,6 +25,7 @@
 #include <QTest>
 #include <QWidget>
 
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -79,6 +82,61 @@ inline std::string ModelText(vtkSMProxy* proxy)
 {
   return vtkSMPropertyHelper(proxy, "Model").GetAsString();
 }
+
+inline bool Near(double a, double b, double tolerance = 1e-9)
+{
+  return std::abs(a - b) <= tolerance;
+}
+
+inline bool Near3(const double a[3], double x, double y, double z, double tolerance = 1e-9)
+{
+  return Near(a[0], x, tolerance) && Near(a[1], y, tolerance) && Near(a[2], z, tolerance);
+}
+
+inline std::string Str3(const double v[3])
+{
+  return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) +
+    ")";
+}
+
+// The interactive widgets in the view: ParaView keeps them in HiddenRepresentations.
+inline int CountWidgets(vtkSMProxy* view)
+{
+  int count = 0;
+  vtkSMPropertyHelper hidden(view, "HiddenRepresentations");
+  for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
+  {
+    if (vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i)))
+    {
+      ++count;
+    }
+  }
+  return count;
+}
+
+inline bool Shown(vtkSMProxy* widget)
+{
+  return widget && vtkSMPropertyHelper(widget, "Visibility").GetAsInt() == 1 &&
+    vtkSMPropertyHelper(widget, "Enabled").GetAsInt() == 1;
+}
+
+// The view's widget of that XML name (the shown one, when `shownOnly`: a panel may hold
+// several of a kind, one per type, hidden but the current type's).
+inline vtkSMNewWidgetRepresentationProxy* FindWidget(
+  vtkSMProxy* view, const char* xmlName, bool shownOnly = false)
+{
+  vtkSMPropertyHelper hidden(view, "HiddenRepresentations");
+  for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
+  {
+    auto* widget = vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i));
+    if (widget && std::string(widget->GetXMLName()) == xmlName && (!shownOnly || Shown(widget)))
+    {
+      return widget;
+    }
+  }
+  return nullptr;
+}
+
 }
 
 #endif

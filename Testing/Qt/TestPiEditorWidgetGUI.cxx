@@ -53,58 +53,6 @@
 
 namespace
 {
-bool Near(double a, double b, double tolerance = 1e-9)
-{
-  return std::abs(a - b) <= tolerance;
-}
-
-bool Near3(const double a[3], double x, double y, double z, double tolerance = 1e-9)
-{
-  return Near(a[0], x, tolerance) && Near(a[1], y, tolerance) && Near(a[2], z, tolerance);
-}
-
-std::string Str3(const double v[3])
-{
-  return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) +
-    ")";
-}
-
-// The interactive widgets in the view: ParaView keeps them in HiddenRepresentations.
-int CountWidgets(vtkSMProxy* view)
-{
-  int count = 0;
-  vtkSMPropertyHelper hidden(view, "HiddenRepresentations");
-  for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
-  {
-    if (vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i)))
-    {
-      ++count;
-    }
-  }
-  return count;
-}
-
-vtkSMNewWidgetRepresentationProxy* FindWidget(vtkSMProxy* view, const char* xmlName)
-{
-  vtkSMPropertyHelper hidden(view, "HiddenRepresentations");
-  for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
-  {
-    auto* widget = vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i));
-    if (widget && std::string(widget->GetXMLName()) == xmlName)
-    {
-      return widget;
-    }
-  }
-  return nullptr;
-}
-
-bool Shown(vtkSMProxy* widget)
-{
-  return widget && vtkSMPropertyHelper(widget, "Visibility").GetAsInt() == 1 &&
-    vtkSMPropertyHelper(widget, "Enabled").GetAsInt() == 1;
-}
-
-
 bool Parse(vtkSMProxy* proxy, pisurf::Model& model)
 {
   std::string error;
