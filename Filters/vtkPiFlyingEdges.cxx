@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiFlyingEdges.h"
 
+#include "PiLastValidOutput.h"
+
 #include "PiField.h"
 #include "PiModel.h"
 #include "PiProduct.h"
@@ -16,6 +18,7 @@
 #include "vtkFloatArray.h"
 #include "vtkGarbageCollector.h"
 #include "vtkIdTypeArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -102,7 +105,8 @@ void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
 }
 
 vtkPiFlyingEdges::vtkPiFlyingEdges()
-  : Internals(new vtkInternals)
+  : LastValid(new PiLastValidOutput)
+  , Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(2);
@@ -111,6 +115,21 @@ vtkPiFlyingEdges::vtkPiFlyingEdges()
 vtkPiFlyingEdges::~vtkPiFlyingEdges()
 {
   this->SetPiSurface(nullptr);
+}
+
+vtkTypeBool vtkPiFlyingEdges::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->LastValid->Run(this->KeepLastValidOutput, outputs, [&](bool& failed) {
+      this->ExecutionFailed = false;
+      const int result = this->Superclass::ProcessRequest(request, inputs, outputs);
+      failed = this->ExecutionFailed;
+      return result;
+    });
+  }
+  return this->Superclass::ProcessRequest(request, inputs, outputs);
 }
 
 vtkMTimeType vtkPiFlyingEdges::GetMTime()

@@ -83,6 +83,8 @@ class Field;
 }
 #endif
 
+class PiLastValidOutput;
+
 class VTKPISURFACESFILTERS_EXPORT vtkPiFlyingEdges : public vtkPolyDataAlgorithm
 {
 public:
@@ -191,6 +193,20 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  ///@{
+  /// When an execution fails on a bad setting (an error is reported), keep the outputs
+  /// of the last valid execution instead of empty ones (default off, VTK's convention;
+  /// ParaView's proxies turn it on: the last valid surface stays while the error is
+  /// shown).
+  vtkSetMacro(KeepLastValidOutput, bool);
+  vtkGetMacro(KeepLastValidOutput, bool);
+  vtkBooleanMacro(KeepLastValidOutput, bool);
+  ///@}
+
+  /// Runs REQUEST_DATA through the last-valid-output guard (see KeepLastValidOutput).
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
+
 protected:
   vtkPiFlyingEdges();
   ~vtkPiFlyingEdges() override;
@@ -218,6 +234,11 @@ protected:
   bool AutomaticResolution = false;
   int MaximumAutomaticResolution = 512;
   int LastResolution = 0;
+
+  bool KeepLastValidOutput = false;
+  // Set by RequestData when it refused a setting but returned 1 (an empty output).
+  bool ExecutionFailed = false;
+  std::unique_ptr<PiLastValidOutput> LastValid;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

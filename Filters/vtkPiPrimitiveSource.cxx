@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiPrimitiveSource.h"
 
+#include "PiLastValidOutput.h"
+
 #include "PiModel.h"
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiPrimitive.h"
@@ -8,6 +10,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkInformationVector.h"
@@ -24,6 +27,7 @@ vtkPiPrimitiveSource::vtkPiPrimitiveSource()
   : Primitive(vtkPiPrimitive::New())
   , Surface(vtkPiSurface::New())
   , Mesher(vtkPiFlyingEdges::New())
+  , LastValid(new PiLastValidOutput)
 {
   this->SetNumberOfInputPorts(0);
   this->Surface->AddFactor(this->Primitive);
@@ -43,6 +47,21 @@ vtkPiPrimitiveSource::~vtkPiPrimitiveSource()
   this->Mesher->Delete();
   this->Surface->Delete();
   this->Primitive->Delete();
+}
+
+vtkTypeBool vtkPiPrimitiveSource::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->LastValid->Run(this->KeepLastValidOutput, outputs, [&](bool& failed) {
+      this->ExecutionFailed = false;
+      const int result = this->Superclass::ProcessRequest(request, inputs, outputs);
+      failed = this->ExecutionFailed;
+      return result;
+    });
+  }
+  return this->Superclass::ProcessRequest(request, inputs, outputs);
 }
 
 vtkMTimeType vtkPiPrimitiveSource::GetMTime()
@@ -294,6 +313,7 @@ int vtkPiPrimitiveSource::RequestData(
   if (!this->ResolveBounds(bounds, error))
   {
     vtkErrorMacro(<< error);
+    this->ExecutionFailed = true;
     return 1; // an empty output, not a pipeline failure: downstream sees "no model"
   }
   if (this->Primitive->IsBounded())

@@ -22,7 +22,8 @@
  *
  * Invalid parameters (a non-positive radius, an odd superellipsoid exponent, a
  * malformed expression, Axis together with a rotation, invalid Bounds) are reported
- * with vtkErrorMacro, naming the parameter, and the output is empty.
+ * with vtkErrorMacro, naming the parameter, and the output is empty (or, with
+ * KeepLastValidOutput, the last valid one).
  *
  * @sa vtkPiPrimitive vtkPiProduct vtkPiFlyingEdges
  */
@@ -32,11 +33,15 @@
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
+
 #include <string> // for std::string
 
 class vtkPiFlyingEdges;
 class vtkPiPrimitive;
 class vtkPiSurface;
+
+class PiLastValidOutput;
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiPrimitiveSource : public vtkPolyDataAlgorithm
 {
@@ -117,6 +122,20 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  ///@{
+  /// When an execution fails on a bad setting (an error is reported), keep the outputs
+  /// of the last valid execution instead of empty ones (default off, VTK's convention;
+  /// ParaView's proxies turn it on: the last valid surface stays while the error is
+  /// shown).
+  vtkSetMacro(KeepLastValidOutput, bool);
+  vtkGetMacro(KeepLastValidOutput, bool);
+  vtkBooleanMacro(KeepLastValidOutput, bool);
+  ///@}
+
+  /// Runs REQUEST_DATA through the last-valid-output guard (see KeepLastValidOutput).
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
+
 protected:
   vtkPiPrimitiveSource();
   ~vtkPiPrimitiveSource() override;
@@ -131,6 +150,11 @@ protected:
   vtkPiFlyingEdges* Mesher;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   int Resolution = 64;
+
+  bool KeepLastValidOutput = false;
+  // Set by RequestData when it refused a setting but returned 1 (an empty output).
+  bool ExecutionFailed = false;
+  std::unique_ptr<PiLastValidOutput> LastValid;
 
 private:
   vtkPiPrimitiveSource(const vtkPiPrimitiveSource&) = delete;

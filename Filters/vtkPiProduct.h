@@ -17,8 +17,9 @@
  * unbounded primitive, none (automatic, growing with r) if every primitive is bounded.
  * Bounds, when set, replaces them and is written into the output's model.
  *
- * Errors (vtkErrorMacro, empty output): no input, an input without `PiSurfaceModel`
- * (or with an invalid one), a non-finite Blending.
+ * Errors (vtkErrorMacro; an empty output, or the last valid one with
+ * KeepLastValidOutput): no input, an input without `PiSurfaceModel` (or with an invalid
+ * one), a non-finite Blending.
  *
  * GeneratePrimitives is off by default here: the inputs already show the primitives.
  *

@@ -205,6 +205,54 @@ bad.Bounds = [0] * 6
 bad.UpdatePipeline()
 check(bad.GetDataInformation().GetNumberOfCells() > 0 and not errors.take(), "recovers")
 
+# --- A refused value keeps the last valid surface (issue 7) --------------------------------
+# Pi Primitive: a torus, then a negative minor radius: the error is reported and the
+# torus stays (same mesh, same model); a valid value re-meshes.
+keep = PiPrimitive(Type="Torus", MinorRadius=0.3, Resolution=24)
+kept_errors = Errors(keep)
+before = servermanager.Fetch(keep)
+check(before.GetNumberOfCells() > 200 and not kept_errors.take(), "a valid torus")
+keep.MinorRadius = -0.1
+after = servermanager.Fetch(keep)
+messages = kept_errors.take()
+check(len(messages) >= 1 and "minor" in messages[0].lower(),
+      "a negative minor radius is refused with an error: %s" % messages)
+same_mesh(before, after, "the last valid torus stays")
+check(model_of(after) == model_of(before), "and its model (minor radius 0.3) stays")
+keep.MinorRadius = 0.2
+fixed = servermanager.Fetch(keep)
+check(not kept_errors.take() and model_of(fixed)["primitives"][0]["minor_radius"] == 0.2,
+      "a valid value re-meshes: %s" % model_of(fixed)["primitives"][0])
+
+# Pi Product: an input refused upstream leaves the product as it was; so does an empty
+# product, which is an error of its own.
+other = PiPrimitive(Center=[1.2, 0, 0], Radius=0.5)
+product = PiProduct(Input=[keep, other], Blending=0.05, Resolution=32)
+product_errors = Errors(product)
+good = servermanager.Fetch(product)
+check(good.GetNumberOfCells() > 500 and not product_errors.take(), "a valid product")
+other.Radius = -1
+same_mesh(good, servermanager.Fetch(product), "a refused input radius leaves the product")
+other.Radius = 0.5
+product.Input = []
+unchanged = servermanager.Fetch(product)
+messages = product_errors.take()
+check(any("input" in m.lower() for m in messages), "an empty product is an error: %s" % messages)
+same_mesh(good, unchanged, "an empty product keeps the last valid surface")
+product.Input = [keep, other]
+check(servermanager.Fetch(product).GetNumberOfCells() > 500, "the product recovers")
+
+# Pi Surface: a malformed Model keeps the last valid surface.
+surface = PiSurface(Resolution=32)
+surface_errors = Errors(surface)
+valid_surface = servermanager.Fetch(surface)
+surface.Model = '{"pisurf": 1, "blending": '
+same_mesh(valid_surface, servermanager.Fetch(surface), "a malformed Model keeps the surface")
+check(any("invalid json" in m.lower() for m in surface_errors.take()),
+      "the malformed Model is reported")
+for proxy in (product, other, keep, surface):
+    Delete(proxy)
+
 # --- Pi Product of primitives = Pi Surface of the same model -------------------------------
 a = PiPrimitive(registrationName="right", Center=[0.9, 0, 0])
 b = PiPrimitive(registrationName="left", Center=[-0.9, 0, 0])

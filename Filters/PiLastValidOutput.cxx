@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiLastValidOutput.h"
+
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+namespace
+{
+void PieceOf(vtkInformationVector* outputs, int& piece, int& pieces)
+{
+  vtkInformation* info = outputs->GetInformationObject(0);
+  piece = info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  pieces = info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+}
+}
+
+int PiLastValidOutput::Run(
+  bool keep, vtkInformationVector* outputs, const std::function<int(bool& failed)>& execute)
+{
+  bool failed = false;
+  const int result = execute(failed);
+  if (!keep)
+  {
+    this->Clear();
+    return result;
+  }
+  failed = failed || result == 0;
+
+  int piece, pieces;
+  PieceOf(outputs, piece, pieces);
+  const int n = outputs->GetNumberOfInformationObjects();
+  if (!failed)
+  {
+    this->Outputs.assign(n, nullptr);
+    for (int port = 0; port < n; ++port)
+    {
+      vtkDataObject* output = vtkDataObject::GetData(outputs, port);
+      if (output)
+      {
+        this->Outputs[port] = vtkSmartPointer<vtkDataObject>::Take(output->NewInstance());
+        this->Outputs[port]->ShallowCopy(output);
+      }
+    }
+    this->Piece = piece;
+    this->Pieces = pieces;
+    return result;
+  }
+  // The error is reported; the outputs are the last valid ones (or empty).
+  const bool same = piece == this->Piece && pieces == this->Pieces &&
+    static_cast<int>(this->Outputs.size()) == n;
+  for (int port = 0; port < n; ++port)
+  {
+    vtkDataObject* output = vtkDataObject::GetData(outputs, port);
+    if (!output)
+    {
+      continue;
+    }
+    if (same && this->Outputs[port])
+    {
+      output->ShallowCopy(this->Outputs[port]);
+    }
+    else
+    {
+      output->Initialize();
+    }
+  }
+  return 1;
+}
+
+void PiLastValidOutput::Clear()
+{
+  this->Outputs.clear();
+  this->Piece = this->Pieces = -1;
+}
