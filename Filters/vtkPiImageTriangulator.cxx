@@ -29,7 +29,10 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <iostream>
+#include <cstdlib>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -273,6 +276,18 @@ bool Triangulation::FindLattice(Lattice& L) const
 
 void Triangulation::RunLattice(const Lattice& L)
 {
+  // PISURF_TIMING=1: the wall time of each pass on stderr.
+  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    if (timing)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      std::cerr << "vtkPiImageTriangulator " << what << ": "
+                << std::chrono::duration<double>(now - clock).count() << " s\n";
+      clock = now;
+    }
+  };
   const double tol = 1e-9 * this->Size;
   const vtkIdType lines = L.LineStart[3];
 
@@ -464,6 +479,7 @@ void Triangulation::RunLattice(const Lattice& L)
     return nullptr;
   };
 
+  lap("lines and hidden parts");
   // PASS 2: the sign of F (1 outside, 0 inside) at the nodes of every z column:
   // on a lattice line the parity of the crossings below the node, on the planes of the
   // box F itself (certified constant on a whole face when interval bounds allow).
@@ -531,6 +547,7 @@ void Triangulation::RunLattice(const Lattice& L)
     return sign;
   };
 
+  lap("node signs");
   // PASS 3: the marching-cubes triangles of every cell, one row of columns (fixed j)
   // per work item; vertices are the crossings on the cell's edges, looked up on their
   // lattice lines, or computed on the edge where no line carries one.
@@ -681,6 +698,7 @@ void Triangulation::RunLattice(const Lattice& L)
       }
     }
   });
+  lap("cells");
   if (this->Abort)
   {
     return;
@@ -980,6 +998,7 @@ int vtkPiImageTriangulator::RequestUpdateExtent(
 int vtkPiImageTriangulator::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const auto start = std::chrono::steady_clock::now();
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   Triangulation T;
@@ -1182,6 +1201,19 @@ int vtkPiImageTriangulator::RequestData(
     return 1;
   }
 
+  // PISURF_TIMING=1: the wall time of each pass on stderr.
+  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
+  auto clock = start;
+  auto lap = [&](const char* what) {
+    if (timing)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      std::cerr << "vtkPiImageTriangulator " << what << ": "
+                << std::chrono::duration<double>(now - clock).count() << " s\n";
+      clock = now;
+    }
+  };
+  lap("up to the triangles");
   // PASS 4: output ids. The hits used by a triangle come first, in input order, then
   // the computed points in key order.
   std::vector<vtkIdType> hitOut(C.N, -1);
@@ -1228,6 +1260,7 @@ int vtkPiImageTriangulator::RequestData(
     }
   });
   const vtkIdType total = usedHits + static_cast<vtkIdType>(T.Points.size());
+  lap("output ids");
 
   // Components that no ray of the views reaches (closed shells inside the solid, found
   // on the hidden parts of first-hit rays) are not what the views show: components
@@ -1275,6 +1308,7 @@ int vtkPiImageTriangulator::RequestData(
     }
   }
 
+  lap("components");
   // The vertices: input hits copy their attributes, computed points take them from
   // the exact gradient.
   vtkNew<vtkPoints> points;
@@ -1340,6 +1374,7 @@ int vtkPiImageTriangulator::RequestData(
     }
   });
 
+  lap("vertices");
   // Triangles, oriented so that their normals agree with the exact gradient (outward);
   // degenerate ones (two corners on one hit) are dropped.
   std::vector<unsigned char> keep(triangles, 0);
@@ -1399,6 +1434,7 @@ int vtkPiImageTriangulator::RequestData(
   vtkNew<vtkCellArray> polys;
   polys->SetData(offsets, cells);
 
+  lap("triangles");
   // Boundary edges: used by one triangle only. Edges are gathered by their lower
   // vertex (CSR), then counted vertex by vertex.
   std::vector<vtkIdType> edgeStart(n + 1, 0);
@@ -1441,6 +1477,7 @@ int vtkPiImageTriangulator::RequestData(
     boundary += count;
   });
 
+  lap("boundary edges");
   output->SetPoints(points);
   output->SetPolys(polys);
   output->GetPointData()->SetNormals(outNormals);
@@ -1469,6 +1506,12 @@ int vtkPiImageTriangulator::RequestData(
   if (pieces > 1)
   {
     KeepShare(output, piece, pieces);
+  }
+  if (timing)
+  {
+    std::cerr << "vtkPiImageTriangulator total: "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+              << " s\n";
   }
   this->UpdateProgress(1.0);
   return 1;
