@@ -7,8 +7,10 @@ side in one run (best of 3):
   grid eval   vtkSampleFunction over vtkImplicitSum of the same factors (VTK's own way
               to compose functions: a virtual call per point per factor; a sum, but the
               same cost as a hand-written product), vtkSampleFunction over vtkPiSurface
-              (one virtual call per point), and vtkPiSurface.FunctionValue on the same
-              grid points (batched blocks); ComputeNormals off everywhere
+              (one virtual call per point), vtkPiSurface.FunctionValue on the same
+              grid points (batched blocks) and vtkPiSampleFunction (the same grid, a
+              row at a time: each factor restricted to each row once, then Horner's
+              rule several points at a time); ComputeNormals off everywhere
   mesh        vtkSampleFunction + vtkFlyingEdges3D with its normals
               versus vtkPiFlyingEdges (row-restricted sampling, flying edges, exact
               normals, vertices moved onto F = 0)
@@ -17,7 +19,7 @@ import os
 import sys
 import time
 
-from pisurfaces import vtkPiFlyingEdges, vtkPiPrimitive, vtkPiSurface
+from pisurfaces import vtkPiFlyingEdges, vtkPiPrimitive, vtkPiSampleFunction, vtkPiSurface
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkSMPTools
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkCommonDataModel import vtkImplicitSum
@@ -106,9 +108,19 @@ def run(name, surface, n):
             sample_sum.Modified()
             sample_sum.Update()
 
+        grid = vtkPiSampleFunction()
+        grid.SetPiSurface(surface)
+        grid.SetModelBounds(bounds)
+        grid.SetSampleDimensions(n, n, n)
+
+        def grid_eval():
+            grid.Modified()
+            grid.Update()
+
         t_sum_eval, _ = best_of(sum_eval)
         t_vtk_eval, _ = best_of(vtk_eval)
         t_pi_eval, _ = best_of(pi_eval)
+        t_grid_eval, _ = best_of(grid_eval)
 
         sample_n = sampler(surface, bounds, n)
         contour = vtkFlyingEdges3D()
@@ -133,7 +145,8 @@ def run(name, surface, n):
 
         t_vtk_mesh, cells_vtk = best_of(vtk_mesh)
         t_pi_mesh, cells_pi = best_of(pi_mesh)
-        rows.append((name, backend, t_sum_eval, t_vtk_eval, t_pi_eval, t_vtk_mesh, t_pi_mesh, cells_vtk, cells_pi))
+        rows.append((name, backend, t_sum_eval, t_vtk_eval, t_pi_eval, t_grid_eval, t_vtk_mesh,
+                     t_pi_mesh, cells_vtk, cells_pi))
     return rows
 
 
@@ -147,13 +160,15 @@ def main():
     ]
     print("grid %d^3, load average %.2f, %d cores" % (n, os.getloadavg()[0], os.cpu_count()))
     print("| model | backend | SampleFunction(ImplicitSum) | SampleFunction(PiSurface) | "
-          "PiSurface batch | ratio to ImplicitSum | SampleFunction+FlyingEdges3D | "
-          "vtkPiFlyingEdges | ratio | triangles VTK / Pi |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "PiSurface batch | vtkPiSampleFunction | grid ratio to ImplicitSum / PiSurface | "
+          "SampleFunction+FlyingEdges3D | vtkPiFlyingEdges | ratio | triangles VTK / Pi |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, surface in cases:
         for r in run(name, surface, n):
-            print("| %s | %s | %.3f s | %.3f s | %.3f s | %.1fx | %.3f s | %.3f s | %.1fx | %d / %d |"
-                  % (r[0], r[1], r[2], r[3], r[4], r[2] / r[4], r[5], r[6], r[5] / r[6], r[7], r[8]))
+            print("| %s | %s | %.3f s | %.3f s | %.3f s | %.3f s | %.1fx / %.1fx | %.3f s | %.3f s "
+                  "| %.1fx | %d / %d |"
+                  % (r[0], r[1], r[2], r[3], r[4], r[5], r[2] / r[5], r[3] / r[5], r[6], r[7],
+                     r[6] / r[7], r[8], r[9]))
 
 
 if __name__ == "__main__":

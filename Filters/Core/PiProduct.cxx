@@ -146,6 +146,95 @@ double ProductKernel::EvaluateRestricted(const double* coefficients, double t, c
   return this->Finish(m, e);
 }
 
+// Cloned for AVX2 where the CPU has it (4 points per instruction instead of 2; no FMA,
+// so the values keep their bits), chosen at load time.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0, int n,
+  const double origin[3], const double step[3], double* values) const
+{
+  auto pointAt = [&](int i, double p[3]) {
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = origin[k] + i * step[k];
+    }
+  };
+  if (!this->AllPolynomial)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      double p[3];
+      pointAt(i, p);
+      values[i] = this->EvaluateRestricted(coefficients, t0 + i, p);
+    }
+    return;
+  }
+  // Chunks of points: per factor, one Horner step for every point of the chunk before
+  // the next step (independent chains, vectorized), then the plain product. If every
+  // factor value of the chunk is 0 or within 2^±B, B = min(256, 1000 / factors), no
+  // partial product leaves the normal range, so the plain product has the same bits as
+  // the scaled one (whose rescaling is by exact powers of two); and F must be finite.
+  // Otherwise the chunk goes point by point through EvaluateRestricted.
+  constexpr int Chunk = 32;
+  const int k = std::max<int>(1, static_cast<int>(this->Factors.size()));
+  const double bound = std::ldexp(1.0, std::min(256, 1000 / k));
+  const double inverse = 1.0 / bound;
+  for (int start = 0; start < n; start += Chunk)
+  {
+    const int m = std::min(Chunk, n - start);
+    double t[Chunk], product[Chunk], acc[Chunk];
+    for (int i = 0; i < m; ++i)
+    {
+      t[i] = t0 + (start + i);
+      product[i] = 1.0;
+    }
+    double hi = 0.0, lo = bound;
+    const double* c = coefficients;
+    for (const Factor& f : this->Factors)
+    {
+      const int terms = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
+      for (int i = 0; i < m; ++i)
+      {
+        acc[i] = 0.0;
+      }
+      for (int q = terms - 1; q >= 0; --q)
+      {
+        const double cq = c[q];
+#pragma omp simd
+        for (int i = 0; i < m; ++i)
+        {
+          acc[i] = acc[i] * t[i] + cq;
+        }
+      }
+#pragma omp simd reduction(max : hi) reduction(min : lo)
+      for (int i = 0; i < m; ++i)
+      {
+        product[i] *= acc[i];
+        const double a = std::fabs(acc[i]);
+        hi = std::max(hi, a);
+        lo = std::min(lo, a == 0.0 ? bound : a);
+      }
+      c += terms;
+    }
+    const bool fast = hi <= bound && lo >= inverse;
+    const double r = this->Blending;
+    for (int i = 0; i < m; ++i)
+    {
+      if (fast && std::isfinite(product[i]))
+      {
+        values[start + i] = Clamp(product[i] - r); // Finish(product, 0)
+      }
+      else
+      {
+        double p[3];
+        pointAt(start + i, p);
+        values[start + i] = this->EvaluateRestricted(coefficients, t[i], p);
+      }
+    }
+  }
+}
+
 inline void ProductKernel::Accumulate(double& m, long& e, double f)
 {
   const double af = std::fabs(f);
@@ -479,12 +568,7 @@ void ProductKernel::EvaluateLine(
   thread_local std::vector<double> coefficients;
   coefficients.resize(this->LineCoefficients);
   this->RestrictLine(o, step, coefficients.data());
-  for (int i = 0; i < n; ++i)
-  {
-    const double p[3] = { origin[0] + i * step[0], origin[1] + i * step[1],
-      origin[2] + i * step[2] };
-    values[i] = this->EvaluateRestricted(coefficients.data(), i - mid, p);
-  }
+  this->EvaluateRestrictedRow(coefficients.data(), -mid, n, origin, step, values);
 }
 
 int SignOfProductMinus(const std::vector<Interval>& enclosures, double r)

@@ -113,6 +113,14 @@ public:
   size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
   void RestrictLine(const double o[3], const double d[3], double* coefficients) const;
   double EvaluateRestricted(const double* coefficients, double t, const double p[3]) const;
+  /// EvaluateRestricted at the n parameters t0, t0 + 1, ..., t0 + n − 1 (points
+  /// origin + i·step), bit-identical to it point by point, several points at a time: the
+  /// factors' Horner chains of neighbouring points interleave (instruction-level
+  /// parallelism) and the product is plain doubles wherever every factor and partial
+  /// product stays within 2^±256 (where the scaled product would not rescale either);
+  /// other points go through EvaluateRestricted.
+  void EvaluateRestrictedRow(const double* coefficients, double t0, int n,
+    const double origin[3], const double step[3], double* values) const;
 
   /// The factor with the smallest first-order distance |f_i|/|∇f_i| to its own zero set
   /// at p (the primitive whose patch p lies on); −1 without factors.

@@ -7,6 +7,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
@@ -353,6 +354,59 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
   EXPECT_DOUBLE_EQ(v, k.Evaluate(o));
   k.EvaluatePoints(o, 0, &v);
   EXPECT_DOUBLE_EQ(v, k.Evaluate(o));
+}
+
+// The row evaluator (several points at a time, plain products where safe) must give
+// EvaluateRestricted's bits at every point: the mesher's grid values, and so its mesh,
+// do not depend on which of the two computed them.
+TEST(ProductKernel, RowEvaluationHasTheBitsOfPointEvaluation)
+{
+  Random rng(45);
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  auto check = [&](const ProductKernel& k, const double o[3], const double d[3], int count,
+                 const char* what) {
+    std::vector<double> coefficients(k.GetLineCoefficientCount());
+    k.RestrictLine(o, d, coefficients.data());
+    const double t0 = -0.5 * (count - 1);
+    const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
+    std::vector<double> row(count);
+    k.EvaluateRestrictedRow(coefficients.data(), t0, count, start, d, row.data());
+    int differing = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      const double p[3] = { start[0] + i * d[0], start[1] + i * d[1], start[2] + i * d[2] };
+      differing += !same(row[i], k.EvaluateRestricted(coefficients.data(), t0 + i, p));
+    }
+    EXPECT_EQ(differing, 0) << what << ": points whose bits differ";
+  };
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    std::vector<Factor> factors;
+    for (int i = 0; i < 1 + trial % 5; ++i)
+      factors.push_back(RandomPrimitive(rng));
+    const ProductKernel k(factors, trial % 2 ? 0.25 : 0.0);
+    const Point o = rng.InBox(-2, 2), e = rng.InBox(-2, 2);
+    const double d[3] = { (e[0] - o[0]) / 77, (e[1] - o[1]) / 77, (e[2] - o[2]) / 77 };
+    check(k, o.data(), d, 1 + trial * 13 % 150, "random primitives"); // partial chunks too
+  }
+  // Factors beyond 2^±256 (the scaled product rescales), exact zeros, and a product of
+  // 300 spheres (the plain-product bound shrinks to 2^3): the same bits everywhere.
+  const double c0[3] = { 0, 0, 0 }, far[3] = { 1e90, 0, 0 };
+  const ProductKernel huge({ Sphere(far, 1.0), Sphere(far, 2.0), Sphere(far, 3.0) }, 1.0);
+  const double along[3] = { 1e88, 1e-3, 0 };
+  check(huge, c0, along, 100, "factors near 1e180 and products beyond the double range");
+  const ProductKernel zero({ Plane(1, 0, 0), Sphere(c0, 1.0), Sphere(far, 1.0) }, 0.0);
+  const double x[3] = { 0.25, 0, 0 };
+  check(zero, c0, x, 41, "a factor exactly 0 at the middle point");
+  std::vector<Factor> many;
+  for (int i = 0; i < 300; ++i)
+  {
+    const double c[3] = { 0.01 * i, 0.0, 0.0 };
+    many.push_back(Sphere(c, 0.5 + 0.001 * i));
+  }
+  const ProductKernel crowd(many, 1e-3);
+  const double slant[3] = { 0.013, 0.007, 0.0 };
+  check(crowd, c0, slant, 200, "300 spheres");
 }
 
 TEST(ProductKernel, GenericFactorsMixWithPolynomialOnes)
