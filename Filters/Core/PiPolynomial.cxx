@@ -438,6 +438,74 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
 {
   const int degree = std::max(this->Degree, 0);
   const int n = degree + 1;
+  // A line along one axis (grid rows of unrotated primitives): only that axis's
+  // binomial expansion, the other two variables are powers of o. The products are
+  // formed in the general path's order, whose other terms are exact zeros here, so the
+  // coefficients are the same numbers.
+  const int moving = (d[1] == 0.0 && d[2] == 0.0) ? 0
+    : (d[0] == 0.0 && d[2] == 0.0)                ? 1
+    : (d[0] == 0.0 && d[1] == 0.0)                ? 2
+                                                  : -1;
+  if (moving >= 0)
+  {
+    double line[MaxDegree + 1][MaxDegree + 1]; // line[k][m]: t^m in (o + t d)^k
+    double power[3][MaxDegree + 1];            // o^k for the fixed axes
+    const int nm = this->GetAxisDegree(moving);
+    line[0][0] = 1.0;
+    for (int k = 1; k <= nm; ++k)
+    {
+      for (int m = 0; m <= k; ++m)
+      {
+        line[k][m] = o[moving] * (m < k ? line[k - 1][m] : 0.0) +
+          (m > 0 ? d[moving] * line[k - 1][m - 1] : 0.0);
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      power[a][0] = 1.0;
+      for (int k = 1; a != moving && k <= this->GetAxisDegree(a); ++k)
+      {
+        power[a][k] = o[a] * power[a][k - 1] + 0.0;
+      }
+    }
+    std::fill(out, out + n, 0.0);
+    for (const auto& t : this->Terms)
+    {
+      const int e[3] = { t.I, t.J, t.K };
+      const int k = e[moving];
+      // As the general path: (x part)·(y part), times the coefficient, times (z part).
+      for (int m = 0; m <= k; ++m)
+      {
+        const double lm = line[k][m];
+        double xy, z;
+        if (moving == 0)
+        {
+          if (lm == 0.0)
+          {
+            continue;
+          }
+          xy = lm * power[1][t.J];
+          z = power[2][t.K];
+        }
+        else if (moving == 1)
+        {
+          xy = power[0][t.I] * lm;
+          z = power[2][t.K];
+        }
+        else
+        {
+          xy = power[0][t.I] * power[1][t.J];
+          z = lm;
+        }
+        const double cm = t.Coefficient * xy;
+        if (cm != 0.0)
+        {
+          out[m] += cm * z;
+        }
+      }
+    }
+    return;
+  }
   // pw[a][k][m]: coefficient of t^m in (o_a + t·d_a)^k, from the binomial theorem.
   thread_local std::vector<double> scratch;
   scratch.assign(static_cast<size_t>(3) * n * n, 0.0);
