@@ -1,11 +1,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """As r -> 0 the Global envelope tends to the boundary of the union of the van der Waals
 spheres. At r = 1e-3 its area must agree with freesasa's Lee-Richards area of the same
-spheres at probe radius ~0 within 1 % (formic acid, acetic acid; ubiquitin within 2 % at
-0.15 A: marching cubes cut the ~1000 sharp crevices of a protein at r = 1e-3, and the
-error shrinks only linearly with the spacing: -2.4 % at 0.25 A, -1.6 % at 0.15 A, -1.0 % at
-0.1 A, measured), it must be
-one closed component, and no vertex may lie inside an atom sphere: the lens-shaped
+spheres at probe radius ~0 within 1 % (formic acid, acetic acid, and ubiquitin at
+0.07 A: marching cubes cut the ~1000 sharp crevices of a protein at r = 1e-3, and the
+error shrinks only linearly with the spacing: -2.4 % at 0.25 A, -1.6 % at 0.15 A, -1.05 %
+at 0.1 A, -0.75 % at 0.07 A, measured), it must be one closed component, and no vertex may lie inside an atom sphere: the lens-shaped
 shells where two spheres overlap are bounded components of {F > 0} that the envelope
 must not leak into, however thin the wall between them and the outside."""
 import os
@@ -52,7 +51,7 @@ def freesasa_area(molecule):
 cml = '/usr/share/chemical-structures/carboxylic_acids/'
 cases = [(CMLMoleculeReader(FileName=cml + 'formic_acid.cml'), 0.1, 0.01, 'formic acid'),
          (CMLMoleculeReader(FileName=cml + 'acetic_acid.cml'), 0.05, 0.01, 'acetic acid'),
-         (PiMoleculeReader(FileName='/usr/share/freesasa/test-data/1ubq.pdb'), 0.15, 0.02,
+         (PiMoleculeReader(FileName='/usr/share/freesasa/test-data/1ubq.pdb'), 0.07, 0.01,
           '1ubq')]
 for reader, spacing, tolerance, name in cases:
     molecule = servermanager.Fetch(reader)
@@ -85,6 +84,10 @@ for reader, spacing, tolerance, name in cases:
     radii = np.array([BONDI[molecule.GetAtom(i).GetAtomicNumber()]
                       for i in range(molecule.GetNumberOfAtoms())])
     points = vtk_to_numpy(mesh.GetPoints().GetData())
+    if len(points) > 1000000:
+        # 1ubq at 0.07 A has 2.4 million vertices: every 8th (a leak into a lens shell
+        # puts a whole shell of vertices inside the spheres, thousands of them).
+        points = points[::8]
     deepest = 0.0
     for start in range(0, len(points), 4096):
         p = points[start:start + 4096]
