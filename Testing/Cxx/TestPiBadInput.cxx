@@ -21,6 +21,7 @@
 #include "vtkPiMoleculeSurface.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiRayCaster.h"
+#include "vtkPiSampleFunction.h"
 #include "vtkPiSurface.h"
 #include "vtkPiSurfaceModelReader.h"
 #include "vtkPiSurfaceSource.h"
@@ -230,6 +231,23 @@ Output RayCaster(const std::function<void(vtkPiRayCaster*)>& set)
     return caster->GetOutputDataObject(1);
   }
   return caster->GetOutput();
+}
+
+// The grid sampler on the one-sphere model (or none).
+Output Sampler(const std::function<void(vtkPiSampleFunction*)>& set, bool withSurface = true)
+{
+  vtkNew<vtkPiSurface> surface;
+  surface->SetModelJSON("{\"pisurf\": 1, \"blending\": 0.25, \"primitives\": [{\"type\": "
+                        "\"sphere\", \"radius\": 1}]}");
+  vtkNew<vtkPiSampleFunction> sampler;
+  if (withSurface)
+  {
+    sampler->SetPiSurface(surface);
+  }
+  sampler->SetSampleDimensions(8, 8, 8);
+  set(sampler);
+  sampler->Update();
+  return sampler->GetOutput();
 }
 
 // Hits of a valid ray cast, then edited to be bad, into the triangulator.
@@ -556,6 +574,22 @@ std::vector<Case> Catalogue()
     [] { return RayCaster([](vtkPiRayCaster* r) { r->SetResolution(16, -3); }); });
   add("raycaster.resolution_huge", "the limit is 2048 MiB",
     [] { return RayCaster([](vtkPiRayCaster* r) { r->SetResolution(VTK_INT_MAX, VTK_INT_MAX); }); });
+  add("sampler.no_surface", "No Pi-surface",
+    [] { return Sampler([](vtkPiSampleFunction*) {}, false); });
+  add("sampler.dimensions_one", "at least 2 points per axis",
+    [] { return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(1, 8, 8); }); });
+  add("sampler.dimensions_negative", "at least 2 points per axis",
+    [] { return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(8, -4, 8); }); });
+  add("sampler.dimensions_huge", "the limit is 2048 MiB", [] {
+    return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(100000, 100000, 100000); });
+  });
+  add("sampler.inverted_bounds", "x0 < x1",
+    [] { return Sampler([](vtkPiSampleFunction* f) { f->SetModelBounds(1, -1, -1, 1, -1, 1); }); });
+  add("sampler.nan_bounds", "finite", [] {
+    return Sampler([](vtkPiSampleFunction* f) {
+      f->SetModelBounds(std::nan(""), 1, -1, 1, -1, 1);
+    });
+  });
   add("raycaster.inverted_bounds", "x0 < x1",
     [] { return RayCaster([](vtkPiRayCaster* r) { r->SetBounds(1, -1, -1, 1, -1, 1); }); });
   add("raycaster.camera_at_focal_point", "CameraPosition equals CameraFocalPoint", [] {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Thread determinism: every threaded algorithm (the mesher, the ray caster, the image
-// triangulator, the molecular surface) gives bit-identical output with vtkSMPTools'
+// triangulator, the molecular surface, the grid sampler) gives bit-identical output with vtkSMPTools'
 // Sequential and STDThread backends (4 threads on any machine, so work is really split).
 // Points, cells, every point-data array and numeric field data are compared exactly.
 #include "PiTestUtilities.h"
@@ -9,6 +9,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkMolecule.h"
 #include "vtkNew.h"
 #include "vtkPiFlyingEdges.h"
@@ -16,6 +17,7 @@
 #include "vtkPiMoleculeReader.h"
 #include "vtkPiMoleculeSurface.h"
 #include "vtkPiRayCaster.h"
+#include "vtkPiSampleFunction.h"
 #include "vtkPiSurface.h"
 #include "vtkPiSurfaceModelReader.h"
 #include "vtkPointData.h"
@@ -24,6 +26,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <string>
@@ -126,6 +129,22 @@ int Compare(const std::string& what, const Run& run)
   int failures = 0;
   vtkSmartPointer<vtkDataObject> sequential = WithBackend("Sequential", run);
   vtkSmartPointer<vtkDataObject> threaded = WithBackend("STDThread", run);
+  if (auto* image = vtkImageData::SafeDownCast(sequential))
+  {
+    // A sampled grid: the same extent and the same bits in every point array.
+    auto* other = vtkImageData::SafeDownCast(threaded);
+    int e[6] = { 0, -1, 0, -1, 0, -1 }, f[6] = { 0, 0, 0, 0, 0, 0 };
+    image->GetExtent(e);
+    if (other)
+    {
+      other->GetExtent(f);
+    }
+    PI_CHECK(image->GetNumberOfPoints() > 100 && other && std::equal(e, e + 6, f));
+    PI_CHECK(other && SameFieldData(image->GetPointData(), other->GetPointData(), what));
+    std::cout << what << ": " << image->GetNumberOfPoints() << " grid values compared"
+              << std::endl;
+    return failures;
+  }
   auto* a = vtkPolyData::SafeDownCast(sequential);
   auto* b = vtkPolyData::SafeDownCast(threaded);
   PI_CHECK(a && a->GetNumberOfPoints() > 100);
@@ -218,6 +237,14 @@ int TestPiThreads(int, char*[])
       return vtkSmartPointer<vtkDataObject>(surface->GetOutput());
     });
   }
+  // The grid sampler: rows split between threads.
+  failures += Compare("sampler cup", [] {
+    vtkNew<vtkPiSampleFunction> sampler;
+    sampler->SetPiSurface(Model("cup_a1.0.pisurf"));
+    sampler->SetSampleDimensions(70, 50, 40);
+    sampler->Update();
+    return vtkSmartPointer<vtkDataObject>(sampler->GetOutput());
+  });
   vtkSMPTools::SetBackend(original.c_str());
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
