@@ -1,24 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiLastValidOutput.h"
+#include "PiPieces.h"
 
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-
-namespace
-{
-void PieceOf(vtkInformationVector* outputs, int& piece, int& pieces)
-{
-  vtkInformation* info = outputs->GetInformationObject(0);
-  piece = info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  pieces = info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-}
-}
 
 int PiLastValidOutput::Run(
   bool keep, vtkInformationVector* outputs, const std::function<int(bool& failed)>& execute)
@@ -32,8 +19,8 @@ int PiLastValidOutput::Run(
   }
   failed = failed || result == 0;
 
-  int piece, pieces;
-  PieceOf(outputs, piece, pieces);
+  const PiPiece request = PiPieceOf(outputs->GetInformationObject(0));
+  const int piece = request.Piece, pieces = request.Pieces;
   const int n = outputs->GetNumberOfInformationObjects();
   if (!failed)
   {

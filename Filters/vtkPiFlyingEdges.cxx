@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiFlyingEdges.h"
+#include "PiPieces.h"
 
 #include "PiLastValidOutput.h"
 
@@ -1342,12 +1343,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
+  const PiPiece request = PiPieceOf(outInfo);
+  const int piece = request.Piece, pieces = request.Pieces;
   const std::shared_ptr<const pisurf::Field> field = this->Internals->Field;
   std::shared_ptr<const pisurf::ProductKernel> kernel;
   double bounds[6];

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
+#include "PiPieces.h"
 #include "PiProduct.h"
 #include "PiRayCast.h"
 #include "vtkPiSurface.h"
@@ -985,13 +986,7 @@ int vtkPiImageTriangulator::RequestUpdateExtent(
 {
   // The views are merged and their seams closed across the whole lattice: every piece
   // triangulates the whole cloud (piece 0 of 1 of the input) and keeps its share.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo)
-  {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-  }
+  PiRequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -1497,12 +1492,8 @@ int vtkPiImageTriangulator::RequestData(
   unused->InsertNextValue(C.N - usedHits);
   output->GetFieldData()->AddArray(unused);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
+  const PiPiece request = PiPieceOf(outInfo);
+  const int piece = request.Piece, pieces = request.Pieces;
   if (pieces > 1)
   {
     KeepShare(output, piece, pieces);

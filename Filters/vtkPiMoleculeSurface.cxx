@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiMoleculeSurface.h"
+#include "PiPieces.h"
 
 #include "PiModel.h"
 #include "PiMolecule.h"
@@ -76,13 +77,7 @@ int vtkPiMoleculeSurface::RequestUpdateExtent(
   // molecule's): ask for the whole input. Readers that do not split molecules (this
   // plugin's, VTK's CML and XYZ readers, ParaView's PDB reader) give only their first
   // piece a molecule, so each rank asks for that one.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo)
-  {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-  }
+  PiRequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -92,12 +87,8 @@ int vtkPiMoleculeSurface::RequestData(
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
+  const PiPiece request = PiPieceOf(outInfo);
+  const int piece = request.Piece, pieces = request.Pieces;
   if (!std::isfinite(this->Blending) || this->Blending < 0)
   {
     vtkErrorMacro(<< "Blending must be a finite number >= 0, not " << this->Blending);

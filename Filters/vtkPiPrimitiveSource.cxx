@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiPrimitiveSource.h"
+#include "PiPieces.h"
 
 #include "PiLastValidOutput.h"
 
@@ -302,12 +303,8 @@ int vtkPiPrimitiveSource::RequestData(
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
+  const PiPiece request = PiPieceOf(outInfo);
+  const int piece = request.Piece, pieces = request.Pieces;
   double bounds[6];
   std::string error;
   if (!this->ResolveBounds(bounds, error))

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
+#include "PiInputModel.h"
+#include "PiPieces.h"
 
 #include "PiModel.h"
 #include "PiProduct.h"
@@ -376,28 +378,12 @@ int vtkPiRayCaster::RequestData(
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
   // The surface: from the input's model, or the one set.
-  vtkSmartPointer<vtkPiSurface> surface = this->PiSurface;
-  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-  if (input)
-  {
-    auto* json =
-      vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
-    if (!json || json->GetNumberOfValues() < 1)
-    {
-      vtkErrorMacro(<< "The input carries no PiSurfaceModel field data (use the output of a "
-                       "Pi Surface source or model reader)");
-      return 0;
-    }
-    surface = vtkSmartPointer<vtkPiSurface>::New();
-    if (!surface->SetModelJSON(json->GetValue(0)))
-    {
-      vtkErrorMacro(<< "Invalid PiSurfaceModel: " << surface->GetErrorMessage());
-      return 0;
-    }
-  }
+  std::string error;
+  const vtkSmartPointer<vtkPiSurface> surface =
+    PiSurfaceOf(vtkDataObject::GetData(inputVector[0], 0), this->PiSurface, error);
   if (!surface)
   {
-    vtkErrorMacro(<< "No Pi-surface: connect an input with a PiSurfaceModel or call SetPiSurface()");
+    vtkErrorMacro(<< error);
     return 0;
   }
   auto kernel = surface->GetKernel();
@@ -563,13 +549,8 @@ int vtkPiRayCaster::RequestData(
   // This piece's rows of every view; the image port's requested rows widen the cast (the
   // points keep to the piece, so the pieces' points do not overlap).
   vtkInformation* pointInfo = outputVector->GetInformationObject(0);
-  const int piece = pointInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? pointInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces =
-    pointInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, pointInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
+  const PiPiece request = PiPieceOf(pointInfo);
+  const int piece = request.Piece, pieces = request.Pieces;
   const int pieceBegin = static_cast<int>(vtkIdType(h) * piece / pieces);
   const int pieceEnd = static_cast<int>(vtkIdType(h) * (piece + 1) / pieces);
   int rowBegin = pieceBegin, rowEnd = pieceEnd;

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSampleFunction.h"
+#include "PiInputModel.h"
+#include "PiPieces.h"
 
 #include "PiProduct.h"
 #include "vtkPiSurface.h"
@@ -73,12 +75,7 @@ int vtkPiSampleFunction::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Only the input's model is used: any piece of it carries it; ask for the first.
-  if (vtkInformation* inInfo = inputVector[0]->GetInformationObject(0))
-  {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-  }
+  PiRequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -90,27 +87,12 @@ int vtkPiSampleFunction::RequestData(
   output->Initialize();
 
   // The surface: from the input's model, or the one set.
-  vtkSmartPointer<vtkPiSurface> surface = this->PiSurface;
-  if (vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0))
-  {
-    auto* json =
-      vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
-    if (!json || json->GetNumberOfValues() < 1)
-    {
-      vtkErrorMacro(<< "The input carries no PiSurfaceModel field data (use the output of a "
-                       "Pi Surface, Pi Primitive, Pi Product or the model reader)");
-      return 0;
-    }
-    surface = vtkSmartPointer<vtkPiSurface>::New();
-    if (!surface->SetModelJSON(json->GetValue(0)))
-    {
-      vtkErrorMacro(<< "Invalid PiSurfaceModel: " << surface->GetErrorMessage());
-      return 0;
-    }
-  }
+  std::string error;
+  const vtkSmartPointer<vtkPiSurface> surface =
+    PiSurfaceOf(vtkDataObject::GetData(inputVector[0], 0), this->PiSurface, error);
   if (!surface)
   {
-    vtkErrorMacro(<< "No Pi-surface: connect an input with a PiSurfaceModel or call SetPiSurface()");
+    vtkErrorMacro(<< error);
     return 0;
   }
   const auto kernel = surface->GetKernel();

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSurfaceSource.h"
+#include "PiPieces.h"
 #include "vtkPiImageTriangulator.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPolyData.h"
@@ -87,8 +88,7 @@ int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  if (PiPieceOf(outInfo).Piece > 0)
   {
     // The ray lattice is not split into pieces: the first piece holds the whole mesh.
     return 1;
