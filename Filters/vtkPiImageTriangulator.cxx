@@ -35,6 +35,7 @@
 #include <iostream>
 #include <cstdlib>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -1239,17 +1240,45 @@ int vtkPiImageTriangulator::RequestData(
     T.Points.end());
   const vtkIdType triangles = rowStart.back() / 3;
   std::vector<vtkIdType> corner(rowStart.back());
+  // The computed points by key: an open-addressing table (a corner in three refers to a
+  // computed point, millions of look-ups on a 512² cloud; a binary search each was a
+  // fifth of the triangulator's time).
+  size_t slots = 16;
+  while (slots < 2 * T.Points.size())
+  {
+    slots *= 2;
+  }
+  // Keys are hit ids (>= 0), −(index + 1) for hidden roots, or EdgeBit | edge: never this.
+  const std::int64_t emptySlot = std::numeric_limits<std::int64_t>::min();
+  std::vector<std::pair<std::int64_t, vtkIdType>> table(slots, { emptySlot, 0 });
+  auto slotOf = [&](std::int64_t key) {
+    std::uint64_t h = static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull;
+    return static_cast<size_t>(h >> 17) & (slots - 1);
+  };
+  for (size_t k = 0; k < T.Points.size(); ++k)
+  {
+    size_t i = slotOf(T.Points[k].Key);
+    while (table[i].first != emptySlot)
+    {
+      i = (i + 1) & (slots - 1);
+    }
+    table[i] = { T.Points[k].Key, static_cast<vtkIdType>(k) };
+  }
+  auto computedId = [&](std::int64_t key) {
+    size_t i = slotOf(key);
+    while (table[i].first != key)
+    {
+      i = (i + 1) & (slots - 1); // every key looked up is in the table
+    }
+    return table[i].second;
+  };
   vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType r = b; r < e; ++r)
     {
       vtkIdType* out = corner.data() + rowStart[r];
       for (std::int64_t key : T.Rows[r])
       {
-        *out++ = key >= 0 && key < EdgeBit ? hitOut[key]
-                                           : usedHits +
-            (std::lower_bound(T.Points.begin(), T.Points.end(), key,
-               [](const Computed& x, std::int64_t k) { return x.Key < k; }) -
-              T.Points.begin());
+        *out++ = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
       }
       std::vector<std::int64_t>().swap(T.Rows[r]);
     }
