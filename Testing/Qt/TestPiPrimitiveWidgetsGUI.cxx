@@ -6,7 +6,8 @@
 // turning the box (its proxy set, then the interaction events its VTK widget fires
 // during a drag) turns the ellipsoid once applied; a torus gets a cylinder through its
 // tube's centre line (Center, Axis, MajorRadius), whose radius edits MajorRadius; a cone
-// gets a plane through its apex across its axis, whose normal edits Axis.
+// gets a plane through its apex across its axis, whose normal edits Axis. Writes
+// PiPrimitiveBox.png (the README's picture) into the picture folder when given one.
 #include "PiQtTestUtilities.h"
 #include "PiModel.h"
 
@@ -64,7 +65,7 @@ int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::cerr << "usage: TestPiPrimitiveWidgetsGUI <PiSurfaces plugin .so>\n";
+    std::cerr << "usage: TestPiPrimitiveWidgetsGUI <PiSurfaces plugin .so> [picture folder]\n";
     return EXIT_FAILURE;
   }
   int qtArgc = 1;
@@ -107,6 +108,8 @@ int main(int argc, char* argv[])
   layout->addWidget(view->widget(), 1);
   window.resize(1000, 700);
   window.show();
+  // As ParaView's properties panel does: the decorators hide the other types' widgets.
+  panel->updatePanel();
   CHECK(QTest::qWaitForWindowExposed(&window), "the window is shown");
   auto apply = [&]() {
     panel->apply();
@@ -117,7 +120,16 @@ int main(int argc, char* argv[])
 
   // The ellipsoid's box: Center, Radii and Orientation.
   vtkSMNewWidgetRepresentationProxy* box = FindWidget(viewProxy, "BoxWidgetRepresentation");
-  CHECK(box && Shown(box), "an ellipsoid shows a box widget");
+  int shown = 0;
+  {
+    vtkSMPropertyHelper hidden(viewProxy, "HiddenRepresentations");
+    for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
+    {
+      shown += Shown(vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i)));
+    }
+  }
+  CHECK(box && Shown(box) && shown == 1,
+    "an ellipsoid shows a box widget, and only that (" << shown << " shown)");
   if (box)
   {
     double rotation[3], scale[3];
@@ -143,6 +155,16 @@ int main(int argc, char* argv[])
         Near(std::abs(e.RotationAxis[2]), 1, 1e-9),
       "the output's model is the ellipsoid turned 75 degrees about z (angle "
         << e.RotationAngle << ", axis " << Str3(e.RotationAxis) << ")");
+    // The README's picture: the panel and the turned box around the turned ellipsoid.
+    if (argc > 2)
+    {
+      window.resize(1000, 640);
+      QCoreApplication::processEvents();
+      view->resetCamera();
+      view->forceRender();
+      QCoreApplication::processEvents();
+      window.grab().save(QString(argv[2]) + "/PiPrimitiveBox.png");
+    }
   }
 
   // A torus: a cylinder through the tube's centre line.
