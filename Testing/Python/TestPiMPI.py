@@ -41,6 +41,21 @@ for name in ("formic_acid", "cup_a1.0"):
     check(r[0] == 0 and r[1] == 1, "%s: both ranks produced triangles (ProcessId range %s)" % (name, r))
     print("%s: area %.12g (serial %.12g), %d triangles" % (name, area, serial_area, cells))
 
+# Method = Ray Cast Triangulation: the ray lattice is not split, the first piece holds the
+# whole mesh and the other is empty, so the union is the serial mesh once.
+path = os.path.join(models, "cup_a1.0.pisurf")
+serial = vtkPiSurfaceModelReader()
+serial.SetFileName(path)
+serial.SetResolution(64)
+serial.SetMethod(1)
+serial.Update()
+serial_cells = serial.GetOutput().GetNumberOfCells()
+ray = PiSurfaceModelReader(FileName=path, Resolution=64, Method="Ray Cast Triangulation")
+ray.UpdatePipeline()
+cells = ray.GetDataInformation().GetNumberOfCells()
+check(serial_cells > 1000 and cells == serial_cells,
+      "ray cast triangulation: %d triangles on 2 ranks, %d serial" % (cells, serial_cells))
+
 # Pi Sample Function: each rank samples its own sub-extent (row by row, restricted about
 # the whole grid's rows, so a piece has the whole grid's bits). The pieces cover the grid:
 # the cell count and the integral of F over the box equal the serial ones.
