@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiFlyingEdges.h"
 #include "PiPieces.h"
+#include "PiTiming.h"
 
 #include "PiLastValidOutput.h"
 
@@ -1330,16 +1331,8 @@ int vtkPiFlyingEdges::RequestData(
 
 int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
 {
-  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    if (timing)
-    {
-      const auto now = std::chrono::steady_clock::now();
-      std::cerr << what << ": " << std::chrono::duration<double>(now - clock).count() << " s\n";
-      clock = now;
-    }
-  };
+  // PISURF_TIMING=1: the wall time of each pass on stderr.
+  PiPassTimer lap("vtkPiFlyingEdges");
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -1462,7 +1455,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   this->UpdateProgress(0.1);
   lap("classify");
-  if (timing)
+  if (lap.IsEnabled())
   {
     std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active\n";
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
 #include "PiPieces.h"
+#include "PiTiming.h"
 #include "PiProduct.h"
 #include "PiRayCast.h"
 #include "vtkPiSurface.h"
@@ -279,17 +280,7 @@ bool Triangulation::FindLattice(Lattice& L) const
 void Triangulation::RunLattice(const Lattice& L)
 {
   // PISURF_TIMING=1: the wall time of each pass on stderr.
-  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    if (timing)
-    {
-      const auto now = std::chrono::steady_clock::now();
-      std::cerr << "vtkPiImageTriangulator " << what << ": "
-                << std::chrono::duration<double>(now - clock).count() << " s\n";
-      clock = now;
-    }
-  };
+  PiPassTimer lap("vtkPiImageTriangulator");
   const double tol = 1e-9 * this->Size;
   const vtkIdType lines = L.LineStart[3];
 
@@ -994,7 +985,8 @@ int vtkPiImageTriangulator::RequestUpdateExtent(
 int vtkPiImageTriangulator::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const auto start = std::chrono::steady_clock::now();
+  // PISURF_TIMING=1: the wall time of each pass on stderr.
+  PiPassTimer lap("vtkPiImageTriangulator");
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   Triangulation T;
@@ -1197,18 +1189,6 @@ int vtkPiImageTriangulator::RequestData(
     return 1;
   }
 
-  // PISURF_TIMING=1: the wall time of each pass on stderr.
-  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
-  auto clock = start;
-  auto lap = [&](const char* what) {
-    if (timing)
-    {
-      const auto now = std::chrono::steady_clock::now();
-      std::cerr << "vtkPiImageTriangulator " << what << ": "
-                << std::chrono::duration<double>(now - clock).count() << " s\n";
-      clock = now;
-    }
-  };
   lap("up to the triangles");
   // PASS 4: output ids. The hits used by a triangle come first, in input order, then
   // the computed points in key order.
@@ -1527,12 +1507,7 @@ int vtkPiImageTriangulator::RequestData(
   {
     KeepShare(output, piece, pieces);
   }
-  if (timing)
-  {
-    std::cerr << "vtkPiImageTriangulator total: "
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-              << " s\n";
-  }
+  lap.Total("total");
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -2,6 +2,7 @@
 #include "vtkPiRayCaster.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
+#include "PiTiming.h"
 
 #include "PiModel.h"
 #include "PiProduct.h"
@@ -363,17 +364,7 @@ int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // PISURF_TIMING=1: the process CPU time of each pass on stderr.
-  const bool timing = std::getenv("PISURF_TIMING") != nullptr;
-  std::clock_t clock = std::clock();
-  auto lap = [&](const char* what) {
-    if (timing)
-    {
-      const std::clock_t now = std::clock();
-      std::cerr << "vtkPiRayCaster " << what << ": " << double(now - clock) / CLOCKS_PER_SEC
-                << " s CPU\n";
-      clock = now;
-    }
-  };
+  PiPassTimer lap("vtkPiRayCaster", PiPassTimer::Cpu);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
