@@ -3,24 +3,29 @@
 #include "PiPieces.h"
 
 #include "vtkDataObject.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-int PiLastValidOutput::Run(
-  bool keep, vtkInformationVector* outputs, const std::function<int(bool& failed)>& execute)
+int PiLastValidOutput::Process(vtkInformation* request, bool keep,
+  vtkInformationVector* outputs, const std::function<int()>& process)
 {
-  bool failed = false;
-  const int result = execute(failed);
+  if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return process();
+  }
+  this->Failed = false;
+  const int result = process();
   if (!keep)
   {
     this->Clear();
     return result;
   }
-  failed = failed || result == 0;
+  const bool failed = this->Failed || result == 0;
 
-  const PiPiece request = PiPieceOf(outputs->GetInformationObject(0));
-  const int piece = request.Piece, pieces = request.Pieces;
+  const PiPiece asked = PiPieceOf(outputs->GetInformationObject(0));
+  const int piece = asked.Piece, pieces = asked.Pieces;
   const int n = outputs->GetNumberOfInformationObjects();
   if (!failed)
   {

@@ -5,8 +5,8 @@
  *
  * ParaView's Pi Surface, Pi Product and Pi Primitive refuse an invalid value (a negative
  * radius, an odd exponent, a malformed expression, an empty product) with an error in
- * the output window and keep showing the last valid surface. Run() wraps the source's
- * REQUEST_DATA pass: an execution that fails (returns 0 or says it failed) leaves the
+ * the output window and keep showing the last valid surface. Process() wraps the
+ * source's REQUEST_DATA pass: an execution that fails (returns 0 or says it failed) leaves the
  * outputs of the last valid execution of the same piece request in place (empty if
  * there was none); a valid one is remembered. With `keep` off, failures leave the
  * outputs as the execution left them (empty: VTK's convention).
@@ -20,16 +20,21 @@
 #include <vector>
 
 class vtkDataObject;
+class vtkInformation;
 class vtkInformationVector;
 
 class PiLastValidOutput
 {
 public:
-  /// Runs `execute` (the algorithm's REQUEST_DATA pass, which sets `failed` when it
-  /// refused a setting but returned 1) with `outputs`. Errors are reported by the
-  /// algorithm itself (vtkErrorMacro): nothing here observes or hides them.
-  int Run(bool keep, vtkInformationVector* outputs,
-    const std::function<int(bool& failed)>& execute);
+  /// The algorithm's ProcessRequest: `process` (the superclass's) for `request`, through
+  /// the guard when it is REQUEST_DATA. Errors are reported by the algorithm itself
+  /// (vtkErrorMacro): nothing here observes or hides them.
+  int Process(vtkInformation* request, bool keep, vtkInformationVector* outputs,
+    const std::function<int()>& process);
+
+  /// Called by a REQUEST_DATA pass that refuses a setting yet returns 1 (an empty
+  /// output, not a pipeline failure): the pass counts as failed.
+  void Fail() { this->Failed = true; }
 
   /// Forgets the remembered outputs.
   void Clear();
@@ -37,6 +42,7 @@ public:
 private:
   std::vector<vtkSmartPointer<vtkDataObject>> Outputs;
   int Piece = -1, Pieces = -1;
+  bool Failed = false; // set by Fail() during the current pass
 };
 
 #endif

@@ -20,7 +20,6 @@
 #include "vtkFloatArray.h"
 #include "vtkGarbageCollector.h"
 #include "vtkIdTypeArray.h"
-#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -122,16 +121,8 @@ vtkPiFlyingEdges::~vtkPiFlyingEdges()
 vtkTypeBool vtkPiFlyingEdges::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
 {
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    return this->LastValid->Run(this->KeepLastValidOutput, outputs, [&](bool& failed) {
-      this->ExecutionFailed = false;
-      const int result = this->Superclass::ProcessRequest(request, inputs, outputs);
-      failed = this->ExecutionFailed;
-      return result;
-    });
-  }
-  return this->Superclass::ProcessRequest(request, inputs, outputs);
+  return this->LastValid->Process(request, this->KeepLastValidOutput, outputs,
+    [&]() { return this->Superclass::ProcessRequest(request, inputs, outputs); });
 }
 
 vtkMTimeType vtkPiFlyingEdges::GetMTime()

@@ -11,7 +11,6 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
-#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkInformationVector.h"
@@ -53,16 +52,8 @@ vtkPiPrimitiveSource::~vtkPiPrimitiveSource()
 vtkTypeBool vtkPiPrimitiveSource::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
 {
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    return this->LastValid->Run(this->KeepLastValidOutput, outputs, [&](bool& failed) {
-      this->ExecutionFailed = false;
-      const int result = this->Superclass::ProcessRequest(request, inputs, outputs);
-      failed = this->ExecutionFailed;
-      return result;
-    });
-  }
-  return this->Superclass::ProcessRequest(request, inputs, outputs);
+  return this->LastValid->Process(request, this->KeepLastValidOutput, outputs,
+    [&]() { return this->Superclass::ProcessRequest(request, inputs, outputs); });
 }
 
 vtkMTimeType vtkPiPrimitiveSource::GetMTime()
@@ -310,7 +301,7 @@ int vtkPiPrimitiveSource::RequestData(
   if (!this->ResolveBounds(bounds, error))
   {
     vtkErrorMacro(<< error);
-    this->ExecutionFailed = true;
+    this->LastValid->Fail();
     return 1; // an empty output, not a pipeline failure: downstream sees "no model"
   }
   if (this->Primitive->IsBounded())

@@ -152,8 +152,6 @@ protected:
   int Resolution = 64;
 
   bool KeepLastValidOutput = false;
-  // Set by RequestData when it refused a setting but returned 1 (an empty output).
-  bool ExecutionFailed = false;
   std::unique_ptr<PiLastValidOutput> LastValid;
 
 private:
