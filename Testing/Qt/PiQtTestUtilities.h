@@ -99,25 +99,27 @@ inline std::string Str3(const double v[3])
     ")";
 }
 
-// The interactive widgets in the view: ParaView keeps them in HiddenRepresentations.
-inline int CountWidgets(vtkSMProxy* view)
+inline bool Shown(vtkSMProxy* widget)
+{
+  return widget && vtkSMPropertyHelper(widget, "Visibility").GetAsInt() == 1 &&
+    vtkSMPropertyHelper(widget, "Enabled").GetAsInt() == 1;
+}
+
+// The interactive widgets in the view (only the shown ones, when `shownOnly`): ParaView
+// keeps them in HiddenRepresentations.
+inline int CountWidgets(vtkSMProxy* view, bool shownOnly = false)
 {
   int count = 0;
   vtkSMPropertyHelper hidden(view, "HiddenRepresentations");
   for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
   {
-    if (vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i)))
+    auto* widget = vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i));
+    if (widget && (!shownOnly || Shown(widget)))
     {
       ++count;
     }
   }
   return count;
-}
-
-inline bool Shown(vtkSMProxy* widget)
-{
-  return widget && vtkSMPropertyHelper(widget, "Visibility").GetAsInt() == 1 &&
-    vtkSMPropertyHelper(widget, "Enabled").GetAsInt() == 1;
 }
 
 // The view's widget of that XML name (the shown one, when `shownOnly`: a panel may hold

@@ -117,17 +117,18 @@ int main(int argc, char* argv[])
     view->forceRender();
   };
   apply();
+  // Another type: the panel shows that type's widget (as after an edit in ParaView).
+  auto showType = [&](int type) {
+    vtkSMPropertyHelper(proxy, "Type").Set(type);
+    proxy->UpdateVTKObjects();
+    panel->updatePanel();
+    view->forceRender();
+    QCoreApplication::processEvents();
+  };
 
   // The ellipsoid's box: Center, Radii and Orientation.
   vtkSMNewWidgetRepresentationProxy* box = FindWidget(viewProxy, "BoxWidgetRepresentation");
-  int shown = 0;
-  {
-    vtkSMPropertyHelper hidden(viewProxy, "HiddenRepresentations");
-    for (unsigned int i = 0; i < hidden.GetNumberOfElements(); ++i)
-    {
-      shown += Shown(vtkSMNewWidgetRepresentationProxy::SafeDownCast(hidden.GetAsProxy(i)));
-    }
-  }
+  const int shown = CountWidgets(viewProxy, true);
   CHECK(box && Shown(box) && shown == 1,
     "an ellipsoid shows a box widget, and only that (" << shown << " shown)");
   if (box)
@@ -168,15 +169,11 @@ int main(int argc, char* argv[])
   }
 
   // A torus: a cylinder through the tube's centre line.
-  vtkSMPropertyHelper(proxy, "Type").Set(3);
   const double axis[3] = { 0, 1, 0 };
   vtkSMPropertyHelper(proxy, "Axis").Set(axis, 3);
   vtkSMPropertyHelper(proxy, "MajorRadius").Set(1.25);
   vtkSMPropertyHelper(proxy, "Orientation").Set(std::array<double, 3>{ 0, 0, 0 }.data(), 3);
-  proxy->UpdateVTKObjects();
-  panel->updatePanel();
-  view->forceRender();
-  QCoreApplication::processEvents();
+  showType(3);
   vtkSMNewWidgetRepresentationProxy* cylinder =
     FindWidget(viewProxy, "ImplicitCylinderWidgetRepresentation", true);
   CHECK(cylinder && Shown(cylinder), "a torus shows a cylinder widget");
@@ -196,11 +193,7 @@ int main(int argc, char* argv[])
   }
 
   // A cone: a plane through the apex across the axis.
-  vtkSMPropertyHelper(proxy, "Type").Set(6);
-  proxy->UpdateVTKObjects();
-  panel->updatePanel();
-  view->forceRender();
-  QCoreApplication::processEvents();
+  showType(6);
   vtkSMNewWidgetRepresentationProxy* plane =
     FindWidget(viewProxy, "DisplaySizedImplicitPlaneWidgetRepresentation", true);
   CHECK(plane && Shown(plane), "a cone shows a plane widget");
