@@ -36,6 +36,7 @@
 #include <iostream>
 #include <cstdlib>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -105,15 +106,43 @@ struct View
   }
 };
 
-// The input cloud, unpacked.
+// One attribute of the input cloud: the input array's own memory when it holds T (as
+// vtkPiRayCaster's outputs do), or a converted copy.
+template <typename T, typename ArrayT>
+struct Column
+{
+  const T* Data = nullptr;
+  std::vector<T> Store;
+
+  // Borrows `a`; false (and nothing borrowed) if it is not an ArrayT.
+  bool Borrow(vtkDataArray* a)
+  {
+    if (auto* typed = ArrayT::SafeDownCast(a))
+    {
+      this->Data = typed->GetPointer(0);
+      return true;
+    }
+    return false;
+  }
+  T* Allocate(size_t n, T value)
+  {
+    this->Store.assign(n, value);
+    this->Data = this->Store.data();
+    return this->Store.data();
+  }
+  const T& operator[](size_t i) const { return this->Data[i]; }
+  const T* data() const { return this->Data; }
+};
+
+// The input cloud.
 struct Cloud
 {
   vtkIdType N = 0;
-  std::vector<double> P;
-  std::vector<float> Normal;
-  std::vector<int> Pixel, ViewOf, Factor;
-  std::vector<double> Depth;
-  std::vector<unsigned char> Singular, Tangent;
+  Column<double, vtkDoubleArray> P;
+  Column<float, vtkFloatArray> Normal;
+  Column<int, vtkIntArray> Pixel, ViewOf, Factor;
+  Column<double, vtkDoubleArray> Depth;
+  Column<unsigned char, vtkUnsignedCharArray> Singular, Tangent;
 };
 
 // A vertex of the output: an input hit, or a point computed on F = 0.
@@ -319,10 +348,33 @@ void Triangulation::RunLattice(const Lattice& L)
     allHits[v.Axis] |= v.AllHits;
     (v.Sense < 0 ? minus : plus)[v.Axis] = true;
   }
+  lap("lines filled");
   std::vector<std::vector<Sample>> hidden(lines);
   std::atomic<bool> missingModel{ false };
+  // The lines of axis a are the rays of an orthographic grid (the pixels of the views
+  // along a): polynomial products restrict them from one composition per axis
+  // (pisurf::RayGrid) instead of a trivariate restriction per line.
+  std::unique_ptr<pisurf::RayGrid> grids[3];
+  if (this->Kernel && this->Kernel->IsPolynomial())
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int ua = (a + 1) % 3, va = (a + 2) % 3;
+      double o[3], u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 }, d[3] = { 0, 0, 0 };
+      o[a] = L.B0[a];
+      o[ua] = L.X(ua, 1);
+      o[va] = L.X(va, 1);
+      u[ua] = L.H[ua];
+      v[va] = L.H[va];
+      d[a] = 1;
+      grids[a] = std::make_unique<pisurf::RayGrid>(
+        *this->Kernel, o, u, v, d, L.N[ua], L.N[va], L.B1[a] - L.B0[a]);
+    }
+  }
   vtkSMPTools::For(0, lines, [&](vtkIdType begin, vtkIdType end) {
     std::vector<pisurf::RayRoot> roots;
+    std::vector<double> row, coefficients;
+    vtkIdType rowOf = -1; // the (axis, mv) whose row coefficients `row` holds
     for (vtkIdType l = begin; l < end && !this->Abort; ++l)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
@@ -370,6 +422,10 @@ void Triangulation::RunLattice(const Lattice& L)
       {
         continue;
       }
+      // The views' hits end the hidden part; roots within tol of them are those hits
+      // (dropped below), so the cast leaves them out instead of refining them again.
+      lo += tol;
+      hi -= tol;
       if (!this->Caster)
       {
         missingModel = true;
@@ -378,23 +434,42 @@ void Triangulation::RunLattice(const Lattice& L)
       const vtkIdType k = l - L.LineStart[a];
       const int mu = static_cast<int>(k % L.N[(a + 1) % 3]) + 1;
       const int mv = static_cast<int>(k / L.N[(a + 1) % 3]) + 1;
-      double o[3], d[3] = { 0, 0, 0 };
-      o[a] = lo;
-      o[(a + 1) % 3] = L.X((a + 1) % 3, mu);
-      o[(a + 2) % 3] = L.X((a + 2) % 3, mv);
-      d[a] = 1;
       pisurf::RayRootOptions options;
       options.Tolerance = 1e-10 * this->Size;
-      this->Caster->Cast(o, d, hi - lo, options, roots);
+      double origin = lo; // roots come as X − origin
+      if (const pisurf::RayGrid* grid = grids[a].get())
+      {
+        const vtkIdType rowKey = 3 * vtkIdType(mv) + a;
+        if (rowKey != rowOf)
+        {
+          grid->SetRow(mv - 1, row);
+          rowOf = rowKey;
+        }
+        coefficients.resize(this->Caster->GetLineCoefficientCount());
+        grid->Restrict(row, mu - 1, coefficients.data());
+        origin = L.B0[a] + grid->GetHalfLength();
+        this->Caster->CastRestricted(coefficients.data(), lo - origin, hi - origin, options, roots);
+      }
+      else
+      {
+        double o[3], d[3] = { 0, 0, 0 };
+        o[a] = lo;
+        o[(a + 1) % 3] = L.X((a + 1) % 3, mu);
+        o[(a + 2) % 3] = L.X((a + 2) % 3, mv);
+        d[a] = 1;
+        this->Caster->Cast(o, d, hi - lo, options, roots);
+      }
       for (const pisurf::RayRoot& r : roots)
       {
-        if (r.T > tol && r.T < hi - lo - tol)
+        const double x = origin + r.T;
+        if (x > lo && x < hi)
         {
-          hidden[l].push_back({ lo + r.T, 0, r.Tangent });
+          hidden[l].push_back({ x, 0, r.Tangent });
         }
       }
     }
   });
+  lap("sorted lines, hidden parts cast");
   if (missingModel)
   {
     vtkErrorWithObjectMacro(this->Algorithm,
@@ -415,45 +490,52 @@ void Triangulation::RunLattice(const Lattice& L)
   {
     lineView[this->Views[v].Axis] = static_cast<int>(v);
   }
-  std::vector<vtkIdType> start(lines + 1, 0);
+  std::vector<vtkIdType> start(lines + 1, 0), hiddenStart(lines + 1, 0);
   for (vtkIdType l = 0; l < lines; ++l)
   {
-    start[l + 1] = start[l] + (first[l + 1] - first[l]) + hidden[l].size();
+    const vtkIdType h = static_cast<vtkIdType>(hidden[l].size());
+    start[l + 1] = start[l] + (first[l + 1] - first[l]) + h;
+    hiddenStart[l + 1] = hiddenStart[l] + h;
   }
   std::vector<Sample> line(start[lines]);
-  for (vtkIdType l = 0; l < lines; ++l)
-  {
-    const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
-    Sample* out = line.data() + start[l];
-    std::copy(samples.begin() + first[l], samples.begin() + first[l + 1], out);
-    Sample* o = out + (first[l + 1] - first[l]);
-    const vtkIdType k = l - L.LineStart[a];
-    for (Sample s : hidden[l])
+  const size_t base = this->Points.size();
+  this->Points.resize(base + hiddenStart[lines]);
+  vtkSMPTools::For(0, lines, [&](vtkIdType lb, vtkIdType le) {
+    for (vtkIdType l = lb; l < le; ++l)
     {
-      Computed c;
-      c.Key = -static_cast<std::int64_t>(this->Points.size()) - 1;
-      c.P[a] = s.X;
-      c.P[(a + 1) % 3] = L.X((a + 1) % 3, static_cast<int>(k % L.N[(a + 1) % 3]) + 1);
-      c.P[(a + 2) % 3] = L.X((a + 2) % 3, static_cast<int>(k / L.N[(a + 1) % 3]) + 1);
-      c.View = lineView[a];
-      s.Code = c.Key;
-      this->Points.push_back(c);
-      *o++ = s;
-    }
-    std::sort(out, o);
-    // A root seen from both ends of the line is one sample; the other copy is marked
-    // removed in place, so the line stays sorted.
-    const Sample* kept = nullptr;
-    for (Sample* s = out; s != o; ++s)
-    {
-      if (kept && s->X - kept->X <= tol)
+      const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
+      Sample* out = line.data() + start[l];
+      std::copy(samples.begin() + first[l], samples.begin() + first[l + 1], out);
+      Sample* o = out + (first[l + 1] - first[l]);
+      const vtkIdType k = l - L.LineStart[a];
+      size_t index = base + hiddenStart[l];
+      for (Sample s : hidden[l])
       {
-        s->Code = INT64_MIN;
-        continue;
+        Computed& c = this->Points[index];
+        c.Key = -static_cast<std::int64_t>(index) - 1;
+        c.P[a] = s.X;
+        c.P[(a + 1) % 3] = L.X((a + 1) % 3, static_cast<int>(k % L.N[(a + 1) % 3]) + 1);
+        c.P[(a + 2) % 3] = L.X((a + 2) % 3, static_cast<int>(k / L.N[(a + 1) % 3]) + 1);
+        c.View = lineView[a];
+        s.Code = c.Key;
+        ++index;
+        *o++ = s;
       }
-      kept = s;
+      std::sort(out, o);
+      // A root seen from both ends of the line is one sample; the other copy is marked
+      // removed in place, so the line stays sorted.
+      const Sample* kept = nullptr;
+      for (Sample* s = out; s != o; ++s)
+      {
+        if (kept && s->X - kept->X <= tol)
+        {
+          s->Code = INT64_MIN;
+          continue;
+        }
+        kept = s;
+      }
     }
-  }
+  });
   hidden.clear();
   samples.clear();
 
@@ -472,7 +554,7 @@ void Triangulation::RunLattice(const Lattice& L)
     return nullptr;
   };
 
-  lap("lines and hidden parts");
+  lap("lines merged");
   // PASS 2: the sign of F (1 outside, 0 inside) at the nodes of every z column:
   // on a lattice line the parity of the crossings below the node, on the planes of the
   // box F itself (certified constant on a whole face when interval bounds allow).
@@ -505,7 +587,8 @@ void Triangulation::RunLattice(const Lattice& L)
     }
     return g;
   };
-  auto columnFlips = [&](int i, int j, std::vector<int>& flips) -> unsigned char {
+  auto columnFlips = [&](int i, int j, std::vector<int>& flips,
+                       std::vector<pisurf::RayRoot>& roots) -> unsigned char {
     const bool boundary = i == 0 || i == nx - 1 || j == 0 || j == ny - 1;
     if (boundary)
     {
@@ -515,6 +598,23 @@ void Triangulation::RunLattice(const Lattice& L)
         return static_cast<unsigned char>(faceSign[f]);
       }
       const int s0 = nodeSign(i, j, 0);
+      if (this->Caster)
+      {
+        // A column on a plane of the box that no view casts: its roots, certified.
+        const double o[3] = { L.X(0, i), L.X(1, j), L.B0[2] }, d[3] = { 0, 0, 1 };
+        pisurf::RayRootOptions options;
+        options.Tolerance = 1e-10 * this->Size;
+        this->Caster->Cast(o, d, L.B1[2] - L.B0[2], options, roots);
+        for (const pisurf::RayRoot& r : roots)
+        {
+          const int level = flipLevel(L.B0[2] + r.T);
+          if (!r.Tangent && level < nz - 1)
+          {
+            flips.push_back(level);
+          }
+        }
+        return static_cast<unsigned char>(s0);
+      }
       int previous = s0;
       for (int m = 1; m < nz; ++m)
       {
@@ -549,9 +649,21 @@ void Triangulation::RunLattice(const Lattice& L)
   std::vector<std::vector<Computed>> rowPoints(ny - 1);
   vtkSMPTools::For(0, ny - 1, [&](vtkIdType jb, vtkIdType je) {
     // Per row, the flips of the columns through (i, j) and (i, j + 1), as CSR lists.
+    // (Side 1 of row j is side 0 of row j + 1: each column is computed once per chunk.)
     std::vector<int> flips[2];
     std::vector<size_t> offset[2];
     std::vector<unsigned char> startSign[2];
+    std::vector<pisurf::RayRoot> roots;
+    auto fillSide = [&](int side, int jn) {
+      flips[side].clear();
+      offset[side].assign(1, 0);
+      startSign[side].clear();
+      for (int i = 0; i < nx; ++i)
+      {
+        startSign[side].push_back(columnFlips(i, jn, flips[side], roots));
+        offset[side].push_back(flips[side].size());
+      }
+    };
     for (vtkIdType jj = jb; jj < je && !this->Aborted(); ++jj)
     {
       const int j = static_cast<int>(jj);
@@ -559,17 +671,17 @@ void Triangulation::RunLattice(const Lattice& L)
       {
         this->Algorithm->UpdateProgress(0.3 + 0.6 * j / (ny - 1));
       }
-      for (int side = 0; side < 2; ++side)
+      if (jj == jb)
       {
-        flips[side].clear();
-        offset[side].assign(1, 0);
-        startSign[side].clear();
-        for (int i = 0; i < nx; ++i)
-        {
-          startSign[side].push_back(columnFlips(i, j + side, flips[side]));
-          offset[side].push_back(flips[side].size());
-        }
+        fillSide(0, j);
       }
+      else
+      {
+        std::swap(flips[0], flips[1]);
+        std::swap(offset[0], offset[1]);
+        std::swap(startSign[0], startSign[1]);
+      }
+      fillSide(1, j + 1);
       std::vector<std::int64_t>& tris = rowTriangles[j];
       std::vector<Computed>& pts = rowPoints[j];
       auto vertex = [&](int a, int i, int jn, int m) -> std::int64_t {
@@ -1060,54 +1172,110 @@ int vtkPiImageTriangulator::RequestData(
     return 0;
   }
 
-  // The cloud.
+  // The cloud: the input's arrays themselves when they have the caster's types,
+  // converted copies otherwise (filled in parallel).
   Cloud& C = T.C;
   C.N = input->GetNumberOfPoints();
-  C.P.resize(3 * C.N);
-  C.Normal.resize(3 * C.N);
-  C.Pixel.resize(2 * C.N);
-  C.ViewOf.resize(C.N);
-  C.Depth.resize(C.N);
-  C.Singular.assign(C.N, 0);
-  C.Tangent.assign(C.N, 0);
-  C.Factor.assign(C.N, -1);
   vtkDataArray* singular = Array(pd, "Singular", 1);
   vtkDataArray* tangent = Array(pd, "Tangent", 1);
   vtkDataArray* factor = Array(pd, "Factor", 1);
-  for (vtkIdType id = 0; id < C.N; ++id)
+  vtkDataArray* xyzIn = C.N > 0 ? input->GetPoints()->GetData() : nullptr;
+  struct Copy
   {
-    input->GetPoint(id, C.P.data() + 3 * id);
-    double n[3];
-    normals->GetTuple(id, n);
-    const int v = static_cast<int>(viewIndex->GetComponent(id, 0));
-    const int i = static_cast<int>(pixel->GetComponent(id, 0));
-    const int j = static_cast<int>(pixel->GetComponent(id, 1));
-    if (v < 0 || v >= static_cast<int>(T.Views.size()) || i < 0 || j < 0 ||
-      i >= T.Views[v].W || j >= T.Views[v].H)
+    vtkDataArray* From;
+    int Components;
+    std::function<void(vtkIdType, const double*)> To;
+  };
+  std::vector<Copy> copies;
+  auto column = [&](auto& c, vtkDataArray* a, int components, double absent) {
+    using T = typename std::decay<decltype(c.Store)>::type::value_type;
+    if (a && c.Borrow(a))
     {
-      vtkErrorMacro(<< "Point " << id << ": pixel (" << i << ", " << j << ") of view " << v
-                    << " is outside the views of PiRayViews");
-      return 0;
+      return;
     }
-    const double* p = C.P.data() + 3 * id;
-    if (!std::isfinite(p[0] + p[1] + p[2]) || !std::isfinite(n[0] + n[1] + n[2]))
+    T* out = c.Allocate(static_cast<size_t>(components) * C.N, static_cast<T>(absent));
+    if (a)
     {
-      vtkErrorMacro(<< "Point " << id << " has a non-finite position or normal");
-      return 0;
+      copies.push_back({ a, components, [out, components](vtkIdType id, const double* v) {
+                          for (int k = 0; k < components; ++k)
+                          {
+                            // (integers out of range become −1: an invalid pixel or view)
+                            out[components * id + k] = std::is_integral<T>::value &&
+                                !(v[k] >= std::numeric_limits<T>::lowest() &&
+                                  v[k] <= std::numeric_limits<T>::max())
+                              ? static_cast<T>(-1)
+                              : static_cast<T>(v[k]);
+                          }
+                        } });
     }
-    for (int k = 0; k < 3; ++k)
+  };
+  column(C.P, xyzIn, 3, 0);
+  column(C.Normal, normals, 3, 0);
+  column(C.Pixel, pixel, 2, 0);
+  column(C.ViewOf, viewIndex, 1, 0);
+  column(C.Depth, depth, 1, 0);
+  column(C.Singular, singular, 1, 0);
+  column(C.Tangent, tangent, 1, 0);
+  column(C.Factor, factor, 1, -1);
+  if (!copies.empty())
+  {
+    vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+      double v[9];
+      for (vtkIdType id = b; id < e; ++id)
+      {
+        for (const Copy& c : copies)
+        {
+          c.From->GetTuple(id, v);
+          if (c.From == singular || c.From == tangent)
+          {
+            v[0] = v[0] != 0 ? 1 : 0;
+          }
+          c.To(id, v);
+        }
+      }
+    });
+  }
+  // Checked in parallel; the first bad point (lowest id) is reported.
+  std::atomic<vtkIdType> badPixel{ C.N }, badValue{ C.N };
+  auto lower = [](std::atomic<vtkIdType>& bad, vtkIdType id) {
+    vtkIdType seen = bad.load();
+    while (id < seen && !bad.compare_exchange_weak(seen, id))
     {
-      C.Normal[3 * id + k] = static_cast<float>(n[k]);
     }
-    C.ViewOf[id] = v;
-    C.Pixel[2 * id] = i;
-    C.Pixel[2 * id + 1] = j;
-    C.Depth[id] = depth->GetComponent(id, 0);
-    C.Singular[id] = singular && singular->GetComponent(id, 0) != 0;
-    C.Tangent[id] = tangent && tangent->GetComponent(id, 0) != 0;
-    C.Factor[id] = factor ? static_cast<int>(factor->GetComponent(id, 0)) : -1;
+  };
+  const int viewCount = static_cast<int>(T.Views.size());
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      const int v = C.ViewOf[id], i = C.Pixel[2 * id], j = C.Pixel[2 * id + 1];
+      if (v < 0 || v >= viewCount || i < 0 || j < 0 || i >= T.Views[v].W || j >= T.Views[v].H)
+      {
+        lower(badPixel, id);
+        continue;
+      }
+      const double* p = C.P.data() + 3 * id;
+      const float* n = C.Normal.data() + 3 * id;
+      if (!std::isfinite(p[0] + p[1] + p[2]) || !std::isfinite(n[0] + n[1] + n[2]))
+      {
+        lower(badValue, id);
+      }
+    }
+  });
+  if (badPixel < C.N && badPixel <= badValue)
+  {
+    const vtkIdType id = badPixel;
+    vtkErrorMacro(<< "Point " << id << ": pixel (" << pixel->GetComponent(id, 0) << ", "
+                  << pixel->GetComponent(id, 1) << ") of view " << viewIndex->GetComponent(id, 0)
+                  << " is outside the views of PiRayViews");
+    return 0;
+  }
+  if (badValue < C.N)
+  {
+    vtkErrorMacro(<< "Point " << badValue.load() << " has a non-finite position or normal");
+    return 0;
   }
 
+  lap("input unpacked");
   // The model, when the input carries it (needed for what the views did not see).
   auto* json = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
   vtkNew<vtkPiSurface> surface;
@@ -1156,6 +1324,7 @@ int vtkPiImageTriangulator::RequestData(
     T.Size = 1;
   }
 
+  lap("model and size");
   Lattice L;
   const bool lattice = T.FindLattice(L);
   int mode = this->MergeMode;
@@ -1189,7 +1358,7 @@ int vtkPiImageTriangulator::RequestData(
     return 1;
   }
 
-  lap("up to the triangles");
+  lap("triangles of the views");
   // PASS 4: output ids. The hits used by a triangle come first, in input order, then
   // the computed points in key order.
   std::vector<vtkIdType> hitOut(C.N, -1);
@@ -1414,52 +1583,90 @@ int vtkPiImageTriangulator::RequestData(
       keep[t] = 1;
     }
   });
-  vtkNew<vtkIdTypeArray> offsets, cells;
-  offsets->SetNumberOfTuples(1);
-  offsets->SetValue(0, 0);
-  vtkIdType kept = 0;
-  for (vtkIdType t = 0; t < triangles; ++t)
-  {
-    if (keep[t])
+  // The kept triangles, compacted in parallel: counted per block, then copied.
+  const vtkIdType blockSize = 1 << 16;
+  const vtkIdType blocks = (triangles + blockSize - 1) / blockSize;
+  std::vector<vtkIdType> blockStart(blocks + 1, 0);
+  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
     {
-      std::copy(corner.begin() + 3 * t, corner.begin() + 3 * t + 3, corner.begin() + 3 * kept);
-      ++kept;
+      const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
+      blockStart[k + 1] = std::count(keep.begin() + k * blockSize, keep.begin() + t1, 1);
     }
-  }
-  corner.resize(3 * kept);
-  const std::vector<vtkIdType>& connectivity = corner;
-  cells->SetNumberOfTuples(3 * kept);
-  std::copy(connectivity.begin(), connectivity.end(), cells->GetPointer(0));
-  offsets->SetNumberOfTuples(kept + 1);
-  for (vtkIdType t = 0; t <= kept; ++t)
+  });
+  for (vtkIdType k = 0; k < blocks; ++k)
   {
-    offsets->SetValue(t, 3 * t);
+    blockStart[k + 1] += blockStart[k];
   }
+  const vtkIdType kept = blockStart[blocks];
+  vtkNew<vtkIdTypeArray> offsets, cells;
+  cells->SetNumberOfTuples(3 * kept);
+  offsets->SetNumberOfTuples(kept + 1);
+  vtkIdType* cellIds = cells->GetPointer(0);
+  vtkIdType* offsetIds = offsets->GetPointer(0);
+  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      vtkIdType out = blockStart[k];
+      const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
+      for (vtkIdType t = k * blockSize; t < t1; ++t)
+      {
+        if (keep[t])
+        {
+          std::copy(corner.begin() + 3 * t, corner.begin() + 3 * t + 3, cellIds + 3 * out);
+          offsetIds[out] = 3 * out;
+          ++out;
+        }
+      }
+    }
+  });
+  offsetIds[kept] = 3 * kept;
+  std::vector<vtkIdType>().swap(corner);
+  const vtkIdType* connectivity = cellIds;
   vtkNew<vtkCellArray> polys;
   polys->SetData(offsets, cells);
 
   lap("triangles");
   // Boundary edges: used by one triangle only. Edges are gathered by their lower
-  // vertex (CSR), then counted vertex by vertex.
+  // vertex (CSR), then counted vertex by vertex. Each thread owns a range of lower
+  // vertices and reads all the triangles (cheap, sequential) to gather its own edges.
+  const vtkIdType parts = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
+  auto forEachEdgeOfPart = [&](vtkIdType part, auto&& visit) {
+    const vtkIdType lo = n * part / parts, hi = n * (part + 1) / parts;
+    for (const vtkIdType* t = connectivity; t != connectivity + 3 * kept; t += 3)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const vtkIdType a = t[k], d = t[k == 2 ? 0 : k + 1];
+        const vtkIdType low = std::min(a, d);
+        if (low >= lo && low < hi)
+        {
+          visit(low, std::max(a, d));
+        }
+      }
+    }
+  };
   std::vector<vtkIdType> edgeStart(n + 1, 0);
-  for (vtkIdType c = 0; c < 3 * kept; ++c)
-  {
-    const vtkIdType a = connectivity[c], b = connectivity[c % 3 == 2 ? c - 2 : c + 1];
-    ++edgeStart[std::min(a, b) + 1];
-  }
+  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType part = b; part < e; ++part)
+    {
+      forEachEdgeOfPart(part, [&](vtkIdType low, vtkIdType) { ++edgeStart[low + 1]; });
+    }
+  });
   for (vtkIdType k = 0; k < n; ++k)
   {
     edgeStart[k + 1] += edgeStart[k];
   }
   std::vector<vtkIdType> edgeEnd(3 * kept);
-  {
-    std::vector<vtkIdType> fill(edgeStart.begin(), edgeStart.end() - 1);
-    for (vtkIdType c = 0; c < 3 * kept; ++c)
+  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType part = b; part < e; ++part)
     {
-      const vtkIdType a = connectivity[c], b = connectivity[c % 3 == 2 ? c - 2 : c + 1];
-      edgeEnd[fill[std::min(a, b)]++] = std::max(a, b);
+      const vtkIdType lo = n * part / parts, hi = n * (part + 1) / parts;
+      std::vector<vtkIdType> fill(edgeStart.begin() + lo, edgeStart.begin() + hi);
+      forEachEdgeOfPart(
+        part, [&](vtkIdType low, vtkIdType high) { edgeEnd[fill[low - lo]++] = high; });
     }
-  }
+  });
   std::atomic<vtkIdType> boundary{ 0 };
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
     vtkIdType count = 0;
