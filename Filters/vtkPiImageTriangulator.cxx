@@ -645,6 +645,25 @@ void Triangulation::RunLattice(const Lattice& L)
   // per work item; vertices are the crossings on the cell's edges, looked up on their
   // lattice lines, or computed on the edge where no line carries one.
   vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+  // The marching-cubes edges as lattice edges: axis and lower corner.
+  struct EdgeOfCell
+  {
+    int Axis;
+    int Low[3];
+  };
+  EdgeOfCell edges[12];
+  for (int e = 0; e < 12; ++e)
+  {
+    const int* ends = Edge[e];
+    for (int k = 0; k < 3; ++k)
+    {
+      edges[e].Low[k] = std::min(Corner[ends[0]][k], Corner[ends[1]][k]);
+      if (Corner[ends[0]][k] != Corner[ends[1]][k])
+      {
+        edges[e].Axis = k;
+      }
+    }
+  }
   std::vector<std::vector<std::int64_t>> rowTriangles(ny - 1);
   std::vector<std::vector<Computed>> rowPoints(ny - 1);
   vtkSMPTools::For(0, ny - 1, [&](vtkIdType jb, vtkIdType je) {
@@ -736,20 +755,20 @@ void Triangulation::RunLattice(const Lattice& L)
         {
           return;
         }
+        // Each of the cell's edges is looked up once, however many triangles use it.
+        std::int64_t keys[12];
+        unsigned known = 0;
         const int* list = cases[index].edges;
         for (int e = 0; list[e] >= 0; ++e)
         {
-          const int* ends = Edge[list[e]];
-          int lo[3], a = 0;
-          for (int k = 0; k < 3; ++k)
+          const int edge = list[e];
+          if (!(known & (1u << edge)))
           {
-            lo[k] = std::min(Corner[ends[0]][k], Corner[ends[1]][k]);
-            if (Corner[ends[0]][k] != Corner[ends[1]][k])
-            {
-              a = k;
-            }
+            const EdgeOfCell& x = edges[edge];
+            keys[edge] = vertex(x.Axis, i + x.Low[0], j + x.Low[1], m + x.Low[2]);
+            known |= 1u << edge;
           }
-          tris.push_back(vertex(a, i + lo[0], j + lo[1], m + lo[2]));
+          tris.push_back(keys[edge]);
         }
       };
       for (int i = 0; i + 1 < nx; ++i)
@@ -1360,67 +1379,66 @@ int vtkPiImageTriangulator::RequestData(
 
   lap("triangles of the views");
   // PASS 4: output ids. The hits used by a triangle come first, in input order, then
-  // the computed points in key order.
-  std::vector<vtkIdType> hitOut(C.N, -1);
+  // the computed points in key order: the hidden roots (keys −1, −2, … as RunLattice
+  // numbers them, so reversed) and then the roots on lattice edges (EdgeBit keys, one
+  // copy per cell that used them: sorted and kept once).
   std::vector<vtkIdType> rowStart(T.Rows.size() + 1, 0);
   for (size_t r = 0; r < T.Rows.size(); ++r)
   {
     rowStart[r + 1] = rowStart[r] + static_cast<vtkIdType>(T.Rows[r].size());
-    for (std::int64_t key : T.Rows[r])
+  }
+  std::unique_ptr<std::atomic<unsigned char>[]> hitUsed(new std::atomic<unsigned char>[C.N]);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
     {
-      if (key >= 0 && key < EdgeBit)
+      hitUsed[id].store(0, std::memory_order_relaxed);
+    }
+  });
+  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType r = b; r < e; ++r)
+    {
+      for (std::int64_t key : T.Rows[r])
       {
-        hitOut[key] = 0;
+        if (key >= 0 && key < EdgeBit)
+        {
+          hitUsed[key].store(1, std::memory_order_relaxed);
+        }
       }
     }
-  }
+  });
+  std::vector<vtkIdType> hitOut(C.N, -1);
   vtkIdType usedHits = 0;
   for (vtkIdType id = 0; id < C.N; ++id)
   {
-    if (hitOut[id] == 0)
+    if (hitUsed[id].load(std::memory_order_relaxed))
     {
       hitOut[id] = usedHits++;
     }
   }
-  std::sort(T.Points.begin(), T.Points.end(),
-    [](const Computed& x, const Computed& y) { return x.Key < y.Key; });
-  T.Points.erase(std::unique(T.Points.begin(), T.Points.end(),
+  hitUsed.reset();
+  const auto hiddenEnd = std::partition_point(T.Points.begin(), T.Points.end(),
+    [](const Computed& c) { return c.Key < 0; });
+  const vtkIdType hiddenCount = hiddenEnd - T.Points.begin();
+  std::reverse(T.Points.begin(), hiddenEnd);
+  auto byKey = [](const Computed& x, const Computed& y) { return x.Key < y.Key; };
+  std::sort(T.Points.begin() + hiddenCount, T.Points.end(), byKey);
+  T.Points.erase(std::unique(T.Points.begin() + hiddenCount, T.Points.end(),
                    [](const Computed& x, const Computed& y) { return x.Key == y.Key; }),
     T.Points.end());
+  std::vector<std::int64_t> edgeKeys;
+  edgeKeys.reserve(T.Points.size() - hiddenCount);
+  for (auto c = T.Points.begin() + hiddenCount; c != T.Points.end(); ++c)
+  {
+    edgeKeys.push_back(c->Key);
+  }
+  // Key −(index + 1) is at hiddenCount − 1 − index; edge keys by binary search.
+  auto computedId = [&](std::int64_t key) -> vtkIdType {
+    return key < 0 ? hiddenCount + key
+                   : hiddenCount + (std::lower_bound(edgeKeys.begin(), edgeKeys.end(), key) -
+                                     edgeKeys.begin());
+  };
   const vtkIdType triangles = rowStart.back() / 3;
   std::vector<vtkIdType> corner(rowStart.back());
-  // The computed points by key: an open-addressing table (a corner in three refers to a
-  // computed point, millions of look-ups on a 512² cloud; a binary search each was a
-  // fifth of the triangulator's time).
-  size_t slots = 16;
-  while (slots < 2 * T.Points.size())
-  {
-    slots *= 2;
-  }
-  // Keys are hit ids (>= 0), −(index + 1) for hidden roots, or EdgeBit | edge: never this.
-  const std::int64_t emptySlot = std::numeric_limits<std::int64_t>::min();
-  std::vector<std::pair<std::int64_t, vtkIdType>> table(slots, { emptySlot, 0 });
-  auto slotOf = [&](std::int64_t key) {
-    std::uint64_t h = static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull;
-    return static_cast<size_t>(h >> 17) & (slots - 1);
-  };
-  for (size_t k = 0; k < T.Points.size(); ++k)
-  {
-    size_t i = slotOf(T.Points[k].Key);
-    while (table[i].first != emptySlot)
-    {
-      i = (i + 1) & (slots - 1);
-    }
-    table[i] = { T.Points[k].Key, static_cast<vtkIdType>(k) };
-  }
-  auto computedId = [&](std::int64_t key) {
-    size_t i = slotOf(key);
-    while (table[i].first != key)
-    {
-      i = (i + 1) & (slots - 1); // every key looked up is in the table
-    }
-    return table[i].second;
-  };
   vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType r = b; r < e; ++r)
     {
@@ -1433,13 +1451,21 @@ int vtkPiImageTriangulator::RequestData(
     }
   });
   const vtkIdType total = usedHits + static_cast<vtkIdType>(T.Points.size());
+  if (lap.IsEnabled())
+  {
+    std::cerr << "vtkPiImageTriangulator " << usedHits << " hits and " << T.Points.size()
+              << " computed points in " << triangles << " triangles\n";
+  }
   lap("output ids");
 
   // Components that no ray of the views reaches (closed shells inside the solid, found
   // on the hidden parts of first-hit rays) are not what the views show: components
-  // without an input hit are dropped.
-  std::vector<vtkIdType> parent(total);
-  for (vtkIdType k = 0; k < total; ++k)
+  // without an input hit are dropped. Hits are all kept; a computed point is kept if
+  // it shares a triangle with a hit, or is joined to such a point by triangles of
+  // computed points only (a union-find over the computed points alone).
+  const vtkIdType computedCount = total - usedHits;
+  std::vector<vtkIdType> parent(computedCount);
+  for (vtkIdType k = 0; k < computedCount; ++k)
   {
     parent[k] = k;
   }
@@ -1450,34 +1476,47 @@ int vtkPiImageTriangulator::RequestData(
     }
     return x;
   };
+  std::vector<unsigned char> visible(computedCount, 0);
   for (vtkIdType t = 0; t < triangles; ++t)
   {
-    for (int c = 1; c < 3; ++c)
+    const vtkIdType* c = corner.data() + 3 * t;
+    if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
     {
-      const vtkIdType x = find(corner[3 * t]), y = find(corner[3 * t + c]);
-      parent[std::max(x, y)] = std::min(x, y);
+      for (int k = 1; k < 3; ++k)
+      {
+        const vtkIdType x = find(c[0] - usedHits), y = find(c[k] - usedHits);
+        parent[std::max(x, y)] = std::min(x, y);
+      }
+    }
+    else
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (c[k] >= usedHits)
+        {
+          visible[c[k] - usedHits] = 1;
+        }
+      }
     }
   }
-  std::vector<unsigned char> visible(total, 0);
-  for (vtkIdType k = 0; k < usedHits; ++k)
+  for (vtkIdType k = 0; k < computedCount; ++k)
   {
-    visible[find(k)] = 1;
+    if (visible[k])
+    {
+      visible[find(k)] = 1;
+    }
   }
   std::vector<vtkIdType> newId(total, -1);
   vtkIdType n = 0;
-  for (vtkIdType k = 0; k < total; ++k)
+  for (vtkIdType k = 0; k < usedHits; ++k)
+  {
+    newId[k] = n++;
+  }
+  for (vtkIdType k = 0; k < computedCount; ++k)
   {
     if (visible[find(k)])
     {
-      newId[k] = n++;
-    }
-  }
-  usedHits = 0;
-  for (vtkIdType id = 0; id < C.N; ++id)
-  {
-    if (hitOut[id] >= 0 && newId[hitOut[id]] >= 0)
-    {
-      ++usedHits;
+      newId[usedHits + k] = n++;
     }
   }
 
