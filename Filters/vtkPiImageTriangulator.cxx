@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
+#include "PiEdgeFlips.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 #include "PiProduct.h"
@@ -151,7 +152,133 @@ struct Computed
   std::int64_t Key;
   double P[3];
   int View;
+  // From the exact gradient (Triangulation::Attributes): unit normal, the nearest
+  // factor, log|∇F|.
+  float N[3];
+  int Nearest;
+  double LogGradient;
 };
+
+// |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q (the
+// normal turns by κ·L along a chord of length L, the sagitta is κ·L²/8).
+double Bend(const double* p, const float* np, const double* q, const float* nq)
+{
+  double s = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    s += (double(np[k]) - nq[k]) * (q[k] - p[k]);
+  }
+  return std::fabs(s);
+}
+
+// The marching-cubes polygons of each case: the triangles of vtkMarchingCubesTriangleCases
+// grouped by shared diagonals, each group's outline as a cycle of cell edges. A case's
+// triangles that do not form a disk stay triangles.
+const std::array<std::vector<std::vector<int>>, 256>& PolygonTable()
+{
+  static const std::array<std::vector<std::vector<int>>, 256> table = [] {
+    std::array<std::vector<std::vector<int>>, 256> t;
+    vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+    for (int index = 0; index < 256; ++index)
+    {
+      std::vector<std::array<int, 3>> tris;
+      for (const int* e = cases[index].edges; *e >= 0; e += 3)
+      {
+        tris.push_back({ e[0], e[1], e[2] });
+      }
+      const int k = static_cast<int>(tris.size());
+      std::vector<int> group(k);
+      for (int a = 0; a < k; ++a)
+      {
+        group[a] = a;
+      }
+      std::function<int(int)> root = [&](int a) { return group[a] == a ? a : root(group[a]); };
+      for (int a = 0; a < k; ++a)
+      {
+        for (int b = a + 1; b < k; ++b)
+        {
+          int shared = 0;
+          for (int x : tris[a])
+          {
+            shared += std::count(tris[b].begin(), tris[b].end(), x) ? 1 : 0;
+          }
+          if (shared == 2)
+          {
+            group[root(b)] = root(a);
+          }
+        }
+      }
+      for (int g = 0; g < k; ++g)
+      {
+        if (root(g) != g)
+        {
+          continue;
+        }
+        // Sides used once in the group form its outline.
+        std::vector<std::pair<int, int>> sides;
+        for (int a = 0; a < k; ++a)
+        {
+          if (root(a) != g)
+          {
+            continue;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            sides.emplace_back(tris[a][c], tris[a][(c + 1) % 3]);
+          }
+        }
+        std::vector<std::pair<int, int>> outline;
+        for (const auto& x : sides)
+        {
+          int uses = 0;
+          for (const auto& y : sides)
+          {
+            uses += (x == y || (x.first == y.second && x.second == y.first)) ? 1 : 0;
+          }
+          if (uses == 1)
+          {
+            outline.push_back(x);
+          }
+        }
+        std::vector<int> cycle{ outline.empty() ? -1 : outline[0].first };
+        bool disk = !outline.empty();
+        while (disk && cycle.size() < outline.size())
+        {
+          int next = -1;
+          for (const auto& x : outline)
+          {
+            const int from = cycle.back();
+            const int previous = cycle.size() > 1 ? cycle[cycle.size() - 2] : -1;
+            const int other = x.first == from ? x.second : x.second == from ? x.first : -1;
+            if (other >= 0 && other != previous && other != cycle[0])
+            {
+              next = other;
+              break;
+            }
+          }
+          disk = next >= 0;
+          cycle.push_back(next);
+        }
+        if (disk && cycle.size() == outline.size())
+        {
+          t[index].push_back(cycle);
+        }
+        else
+        {
+          for (int a = 0; a < k; ++a)
+          {
+            if (root(a) == g)
+            {
+              t[index].push_back({ tris[a][0], tris[a][1], tris[a][2] });
+            }
+          }
+        }
+      }
+    }
+    return t;
+  }();
+  return table;
+}
 
 // Output keys: input hits are their point id (>= 0), points computed along lattice
 // lines −(index + 1), roots computed on a lattice edge EdgeBit | edge id.
@@ -226,6 +353,22 @@ struct Triangulation
       this->Abort = true;
     }
     return this->Abort;
+  }
+
+  // The exact-gradient attributes of a computed point.
+  void Attributes(Computed& c) const
+  {
+    double nrm[3] = { 0, 0, 0 }, g = 0;
+    c.Nearest = -1;
+    c.LogGradient = -std::numeric_limits<double>::infinity();
+    if (this->Kernel)
+    {
+      this->Kernel->EvaluateVertex(c.P, nrm, g, c.Nearest, &c.LogGradient);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      c.N[k] = static_cast<float>(nrm[k]);
+    }
   }
 
   int Sign(const double p[3]) const
@@ -517,6 +660,7 @@ void Triangulation::RunLattice(const Lattice& L)
         c.P[(a + 1) % 3] = L.X((a + 1) % 3, static_cast<int>(k % L.N[(a + 1) % 3]) + 1);
         c.P[(a + 2) % 3] = L.X((a + 2) % 3, static_cast<int>(k / L.N[(a + 1) % 3]) + 1);
         c.View = lineView[a];
+        this->Attributes(c);
         s.Code = c.Key;
         ++index;
         *o++ = s;
@@ -644,7 +788,7 @@ void Triangulation::RunLattice(const Lattice& L)
   // PASS 3: the marching-cubes triangles of every cell, one row of columns (fixed j)
   // per work item; vertices are the crossings on the cell's edges, looked up on their
   // lattice lines, or computed on the edge where no line carries one.
-  vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+  const auto& polygons = PolygonTable();
   // The marching-cubes edges as lattice edges: axis and lower corner.
   struct EdgeOfCell
   {
@@ -703,22 +847,33 @@ void Triangulation::RunLattice(const Lattice& L)
       fillSide(1, j + 1);
       std::vector<std::int64_t>& tris = rowTriangles[j];
       std::vector<Computed>& pts = rowPoints[j];
-      auto vertex = [&](int a, int i, int jn, int m) -> std::int64_t {
-        // The edge along axis a from node (i, jn, m).
+      // The vertex on the edge along axis a from node (i, jn, m): its key, position and
+      // normal (an edge root is computed into `c`).
+      struct Ref
+      {
+        std::int64_t Key;
+        const double* P;
+        const float* N;
+      };
+      auto vertex = [&](int a, int i, int jn, int m, Computed& c) -> Ref {
         const int n[3] = { i, jn, m };
         const int mu = n[(a + 1) % 3], mv = n[(a + 2) % 3];
         if (L.HasLine(a, mu, mv))
         {
           if (const Sample* s = firstCrossing(L.Line(a, mu, mv), L.X(a, n[a]), L.X(a, n[a] + 1)))
           {
-            return s->Code;
+            if (s->Code >= 0)
+            {
+              return { s->Code, C.P.data() + 3 * s->Code, C.Normal.data() + 3 * s->Code };
+            }
+            const Computed& h = this->Points[-s->Code - 1];
+            return { s->Code, h.P, h.N };
           }
         }
         // No line carries it (a plane of the box, or a root within 1e-10 of a node):
         // the root of F on the edge itself.
         const std::int64_t key =
           EdgeBit | ((((std::int64_t(m) * ny + jn) * nx + i) * 3) + a);
-        Computed c;
         c.Key = key;
         c.View = -1;
         double p0[3] = { L.X(0, i), L.X(1, jn), L.X(2, m) };
@@ -742,8 +897,9 @@ void Triangulation::RunLattice(const Lattice& L)
         {
           c.P[a] = 0.5 * (L.X(a, n[a]) + L.X(a, n[a] + 1));
         }
+        this->Attributes(c);
         pts.push_back(c);
-        return key;
+        return { key, c.P, c.N };
       };
       auto emitCell = [&](int i, int m, const unsigned char* bottom, const unsigned char* top) {
         int index = 0;
@@ -755,20 +911,80 @@ void Triangulation::RunLattice(const Lattice& L)
         {
           return;
         }
-        // Each of the cell's edges is looked up once, however many triangles use it.
-        std::int64_t keys[12];
-        unsigned known = 0;
-        const int* list = cases[index].edges;
-        for (int e = 0; list[e] >= 0; ++e)
+        // Each polygon of the case (one per sheet through the cell) is triangulated
+        // along the diagonals the surface bends least along (the least total Bend,
+        // dynamic programming over the polygon's triangulations; ties: the first).
+        for (const std::vector<int>& polygon : polygons[index])
         {
-          const int edge = list[e];
-          if (!(known & (1u << edge)))
+          const int size = static_cast<int>(polygon.size());
+          Ref v[12];
+          Computed local[12];
+          bool distinct = true;
+          for (int k = 0; k < size; ++k)
           {
-            const EdgeOfCell& x = edges[edge];
-            keys[edge] = vertex(x.Axis, i + x.Low[0], j + x.Low[1], m + x.Low[2]);
-            known |= 1u << edge;
+            const EdgeOfCell& x = edges[polygon[k]];
+            v[k] = vertex(x.Axis, i + x.Low[0], j + x.Low[1], m + x.Low[2], local[k]);
+            for (int q = 0; q < k; ++q)
+            {
+              distinct = distinct && v[q].Key != v[k].Key;
+            }
           }
-          tris.push_back(keys[edge]);
+          if (size == 3 || !distinct)
+          {
+            // (two corners on one hit: the case's own fan, degenerate triangles dropped later)
+            for (int k = 1; k + 1 < size; ++k)
+            {
+              tris.push_back(v[0].Key);
+              tris.push_back(v[k].Key);
+              tris.push_back(v[k + 1].Key);
+            }
+            continue;
+          }
+          double cost[12][12];
+          int split[12][12];
+          auto bend = [&](int a, int b) {
+            return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : Bend(v[a].P, v[a].N, v[b].P, v[b].N);
+          };
+          for (int k = 0; k + 1 < size; ++k)
+          {
+            cost[k][k + 1] = 0;
+          }
+          for (int length = 2; length < size; ++length)
+          {
+            for (int a = 0; a + length < size; ++a)
+            {
+              const int b = a + length;
+              cost[a][b] = std::numeric_limits<double>::infinity();
+              for (int k = a + 1; k < b; ++k)
+              {
+                const double c = cost[a][k] + cost[k][b] + bend(a, k) + bend(k, b);
+                if (c < cost[a][b])
+                {
+                  cost[a][b] = c;
+                  split[a][b] = k;
+                }
+              }
+            }
+          }
+          int stack[24], top = 0;
+          stack[top++] = 0;
+          stack[top++] = size - 1;
+          while (top > 0)
+          {
+            const int b = stack[--top], a = stack[--top];
+            if (b - a < 2)
+            {
+              continue;
+            }
+            const int k = split[a][b];
+            tris.push_back(v[a].Key);
+            tris.push_back(v[k].Key);
+            tris.push_back(v[b].Key);
+            stack[top++] = a;
+            stack[top++] = k;
+            stack[top++] = k;
+            stack[top++] = b;
+          }
         }
       };
       for (int i = 0; i + 1 < nx; ++i)
@@ -1506,19 +1722,31 @@ int vtkPiImageTriangulator::RequestData(
       visible[find(k)] = 1;
     }
   }
-  std::vector<vtkIdType> newId(total, -1);
+  // Output points in the order the triangles first use them (rows of the lattice), so
+  // that neighbouring triangles have neighbouring points: every later pass (and the
+  // user's filters) reads memory in order.
+  std::vector<vtkIdType> newId(total, -1), source; // source: the old id of each point
+  source.reserve(total);
   vtkIdType n = 0;
-  for (vtkIdType k = 0; k < usedHits; ++k)
+  for (vtkIdType c = 0; c < 3 * triangles; ++c)
   {
-    newId[k] = n++;
-  }
-  for (vtkIdType k = 0; k < computedCount; ++k)
-  {
-    if (visible[find(k)])
+    const vtkIdType k = corner[c];
+    if (newId[k] < 0 && (k < usedHits || visible[find(k - usedHits)]))
     {
-      newId[usedHits + k] = n++;
+      newId[k] = n++;
+      source.push_back(k);
     }
   }
+  std::vector<vtkIdType> hitOfUsed(usedHits);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      if (hitOut[id] >= 0)
+      {
+        hitOfUsed[hitOut[id]] = id;
+      }
+    }
+  });
 
   lap("components");
   // The vertices: input hits copy their attributes, computed points take them from
@@ -1541,48 +1769,30 @@ int vtkPiImageTriangulator::RequestData(
   outFactor->SetNumberOfTuples(n);
   auto* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = outNormals->GetPointer(0);
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
-    {
-      const vtkIdType k = hitOut[id] >= 0 ? newId[hitOut[id]] : -1;
-      if (k < 0)
-      {
-        continue;
-      }
-      std::copy(C.P.data() + 3 * id, C.P.data() + 3 * id + 3, xyz + 3 * k);
-      std::copy(C.Normal.data() + 3 * id, C.Normal.data() + 3 * id + 3, nrmOut + 3 * k);
-      outSingular->SetValue(k, C.Singular[id]);
-      outView->SetValue(k, C.ViewOf[id]);
-      outFactor->SetValue(k, C.Factor[id]);
-    }
-  });
+  // In output order (written in sequence): hits copy, computed points evaluate.
   const double probe = 1e-3 * T.Size;
-  const vtkIdType firstComputed = total - static_cast<vtkIdType>(T.Points.size());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Points.size()), [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType q = b; q < e; ++q)
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
     {
-      const vtkIdType k = newId[firstComputed + q];
-      if (k < 0)
+      const vtkIdType old = source[k];
+      if (old < usedHits)
       {
+        const vtkIdType id = hitOfUsed[old];
+        std::copy(C.P.data() + 3 * id, C.P.data() + 3 * id + 3, xyz + 3 * k);
+        std::copy(C.Normal.data() + 3 * id, C.Normal.data() + 3 * id + 3, nrmOut + 3 * k);
+        outSingular->SetValue(k, C.Singular[id]);
+        outView->SetValue(k, C.ViewOf[id]);
+        outFactor->SetValue(k, C.Factor[id]);
         continue;
       }
-      const Computed& c = T.Points[q];
+      const Computed& c = T.Points[old - usedHits];
       std::copy(c.P, c.P + 3, xyz + 3 * k);
+      std::copy(c.N, c.N + 3, nrmOut + 3 * k);
       outView->SetValue(k, c.View);
-      double nrm[3] = { 0, 0, 0 }, g = 0, logGradient = 0;
-      int nearest = -1;
-      bool isSingular = false;
-      if (T.Kernel)
-      {
-        T.Kernel->EvaluateVertex(c.P, nrm, g, nearest, &logGradient);
-        isSingular = T.Caster->IsSingular(c.P, logGradient, probe, this->SingularTolerance);
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        nrmOut[3 * k + a] = static_cast<float>(nrm[a]);
-      }
+      const bool isSingular =
+        T.Kernel && T.Caster->IsSingular(c.P, c.LogGradient, probe, this->SingularTolerance);
       outSingular->SetValue(k, isSingular ? 1 : 0);
-      outFactor->SetValue(k, nearest);
+      outFactor->SetValue(k, c.Nearest);
     }
   });
 
@@ -1666,68 +1876,17 @@ int vtkPiImageTriangulator::RequestData(
   polys->SetData(offsets, cells);
 
   lap("triangles");
-  // Boundary edges: used by one triangle only. Edges are gathered by their lower
-  // vertex (CSR), then counted vertex by vertex. Each thread owns a range of lower
-  // vertices and reads all the triangles (cheap, sequential) to gather its own edges.
-  const vtkIdType parts = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
-  auto forEachEdgeOfPart = [&](vtkIdType part, auto&& visit) {
-    const vtkIdType lo = n * part / parts, hi = n * (part + 1) / parts;
-    for (const vtkIdType* t = connectivity; t != connectivity + 3 * kept; t += 3)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const vtkIdType a = t[k], d = t[k == 2 ? 0 : k + 1];
-        const vtkIdType low = std::min(a, d);
-        if (low >= lo && low < hi)
-        {
-          visit(low, std::max(a, d));
-        }
-      }
-    }
-  };
-  std::vector<vtkIdType> edgeStart(n + 1, 0);
-  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType part = b; part < e; ++part)
-    {
-      forEachEdgeOfPart(part, [&](vtkIdType low, vtkIdType) { ++edgeStart[low + 1]; });
-    }
-  });
-  for (vtkIdType k = 0; k < n; ++k)
+  // Boundary edges (used by one triangle), then the edge flips towards the curvature
+  // (PiEdgeFlips.h): vertices stay, the boundary and the topology too.
+  const PiEdgeFlipResult flipped =
+    PiFlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, this->EdgeFlipRounds);
+  const vtkIdType boundary = flipped.BoundaryEdges;
+  if (lap.IsEnabled())
   {
-    edgeStart[k + 1] += edgeStart[k];
+    std::cerr << "vtkPiImageTriangulator " << flipped.Flips << " edges flipped in "
+              << flipped.Rounds << " rounds\n";
   }
-  std::vector<vtkIdType> edgeEnd(3 * kept);
-  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType part = b; part < e; ++part)
-    {
-      const vtkIdType lo = n * part / parts, hi = n * (part + 1) / parts;
-      std::vector<vtkIdType> fill(edgeStart.begin() + lo, edgeStart.begin() + hi);
-      forEachEdgeOfPart(
-        part, [&](vtkIdType low, vtkIdType high) { edgeEnd[fill[low - lo]++] = high; });
-    }
-  });
-  std::atomic<vtkIdType> boundary{ 0 };
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    vtkIdType count = 0;
-    for (vtkIdType k = b; k < e; ++k)
-    {
-      auto first = edgeEnd.begin() + edgeStart[k], last = edgeEnd.begin() + edgeStart[k + 1];
-      std::sort(first, last);
-      for (auto x = first; x != last;)
-      {
-        auto y = x + 1;
-        while (y != last && *y == *x)
-        {
-          ++y;
-        }
-        count += (y - x == 1) ? 1 : 0;
-        x = y;
-      }
-    }
-    boundary += count;
-  });
-
-  lap("boundary edges");
+  lap("boundary edges and flips");
   output->SetPoints(points);
   output->SetPolys(polys);
   output->GetPointData()->SetNormals(outNormals);
@@ -1805,4 +1964,5 @@ void vtkPiImageTriangulator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MergeMode: " << this->MergeMode << "\n";
   os << indent << "SheetTolerance: " << this->SheetTolerance << "\n";
   os << indent << "SingularTolerance: " << this->SingularTolerance << "\n";
+  os << indent << "EdgeFlipRounds: " << this->EdgeFlipRounds << "\n";
 }

@@ -1,6 +1,7 @@
 """Image-based triangulation benchmark (./run bench): one ray-cast cloud, three meshes.
 
-    pvpython triangulation_benchmark.py MODELS_DIR [N]   (N pixels per side, default 512)
+    pvpython triangulation_benchmark.py MODELS_DIR [N [MODEL,...]]   (N pixels per side,
+        default 512; models default cup_a1.0,formic_acid)
 
 On the six axis views (first hits, N x N each) of the cup and formic acid, with the
 STDThread backend:
@@ -85,7 +86,7 @@ def main():
     print("%-12s %-22s %9s %9s %9s %11s %11s %11s %11s %11s" % (
         "model", "method", "time s", "vertices", "ratio", "max vtx", "rms vtx", "rms centr",
         "rms surf", "max surf"))
-    for name in ("cup_a1.0", "formic_acid"):
+    for name in (sys.argv[3].split(",") if len(sys.argv) > 3 else ("cup_a1.0", "formic_acid")):
         surface = vtkPiSurface()
         surface.LoadModel("%s/%s.pisurf" % (models, name))
         b = [0.0] * 6

@@ -1,0 +1,482 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PiEdgeFlips.h"
+#include "PiTiming.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace
+{
+// Half-edge h = 3·t + k of triangle t runs from its corner k to its corner k + 1.
+template <typename Id>
+class FlipMesh
+{
+public:
+  FlipMesh(vtkIdType* c, vtkIdType triangles, vtkIdType points, const double* xyz, const float* n)
+    : C(c)
+    , T(static_cast<Id>(triangles))
+    , N(static_cast<Id>(points))
+    , X(xyz)
+    , Normal(n)
+  {
+  }
+
+  static Id Next(Id h) { return h % 3 == 2 ? h - 2 : h + 1; }
+  static Id Prev(Id h) { return h % 3 == 0 ? h + 2 : h - 1; }
+  Id From(Id h) const { return static_cast<Id>(this->C[h]); }
+  Id To(Id h) const { return static_cast<Id>(this->C[Next(h)]); }
+
+  // Opposite half-edges (−1 on the boundary, at non-manifold edges and between
+  // triangles of opposite orientation); returns the number of boundary edges.
+  vtkIdType Build();
+  // One round of flips; returns how many.
+  vtkIdType Round();
+
+private:
+
+  // |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q.
+  double Bend(Id p, Id q) const
+  {
+    double s = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      s += (double(this->Normal[3 * p + k]) - this->Normal[3 * q + k]) *
+        (this->X[3 * q + k] - this->X[3 * p + k]);
+    }
+    return std::fabs(s);
+  }
+  // (b − a)×(c − a)·w
+  double Facing(Id a, Id b, Id c, const double w[3]) const
+  {
+    const double* pa = this->X + 3 * a;
+    const double* pb = this->X + 3 * b;
+    const double* pc = this->X + 3 * c;
+    const double u[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+    const double v[3] = { pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
+    return (u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1] +
+      (u[0] * v[1] - u[1] * v[0]) * w[2];
+  }
+  void Cross(Id a, Id b, Id c, double out[3]) const
+  {
+    const double* pa = this->X + 3 * a;
+    const double* pb = this->X + 3 * b;
+    const double* pc = this->X + 3 * c;
+    const double u[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+    const double v[3] = { pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
+    out[0] = u[1] * v[2] - u[2] * v[1];
+    out[1] = u[2] * v[0] - u[0] * v[2];
+    out[2] = u[0] * v[1] - u[1] * v[0];
+  }
+  void NormalSum(Id a, Id b, Id c, double out[3]) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      out[k] = double(this->Normal[3 * a + k]) + this->Normal[3 * b + k] + this->Normal[3 * c + k];
+    }
+  }
+
+  // The gain of flipping the edge of h (and its opposite o): 0 if not allowed.
+  float Gain(Id h, Id o) const
+  {
+    const Id x = this->From(h), y = this->To(h), c = this->From(Prev(h)), d = this->From(Prev(o));
+    if (c == d || c == x || c == y || d == x || d == y)
+    {
+      return 0;
+    }
+    const double gain = this->Bend(x, y) - this->Bend(c, d);
+    if (!(gain > 0))
+    {
+      return 0;
+    }
+    // Convex quad: the new triangles (x, d, c) and (d, y, c) face the old quad's way and
+    // agree with their vertices' normals.
+    double n1[3], n2[3], quad[3], w[3];
+    this->Cross(x, y, c, n1);
+    this->Cross(y, x, d, n2);
+    for (int k = 0; k < 3; ++k)
+    {
+      quad[k] = n1[k] + n2[k];
+    }
+    if (!(this->Facing(x, d, c, quad) > 0) || !(this->Facing(d, y, c, quad) > 0))
+    {
+      return 0;
+    }
+    this->NormalSum(x, d, c, w);
+    if (!(this->Facing(x, d, c, w) > 0))
+    {
+      return 0;
+    }
+    this->NormalSum(d, y, c, w);
+    if (!(this->Facing(d, y, c, w) > 0))
+    {
+      return 0;
+    }
+    return static_cast<float>(gain);
+  }
+
+  // The neighbours of From(h0), h0 leaving it, into out[0, count); false if more than
+  // RingMax (or a fan that does not close up).
+  static constexpr int RingMax = 48;
+  bool Ring(Id h0, Id* out, int& count) const
+  {
+    count = 0;
+    Id h = h0;
+    for (;;)
+    {
+      out[count++] = this->To(h);
+      const Id p = Prev(h);
+      const Id o = this->Opp[p];
+      if (o < 0)
+      {
+        out[count++] = this->From(p); // the fan is open: the other way round as well
+        break;
+      }
+      h = o;
+      if (h == h0)
+      {
+        return true;
+      }
+      if (count >= RingMax - 1)
+      {
+        return false;
+      }
+    }
+    for (h = h0;;)
+    {
+      const Id o = this->Opp[h];
+      if (o < 0)
+      {
+        return true;
+      }
+      h = Next(o);
+      if (h == h0 || count >= RingMax)
+      {
+        return false;
+      }
+      out[count++] = this->To(h);
+    }
+  }
+
+  // Whether the flip of h (opposite o) keeps the mesh manifold: c–d is no edge yet and
+  // x and y are the only common neighbours of c and d.
+  bool KeepsManifold(Id h, Id o) const
+  {
+    const Id x = this->From(h), y = this->To(h), d = this->From(Prev(o));
+    Id rc[RingMax], rd[RingMax];
+    int nc, nd;
+    if (!this->Ring(Prev(h), rc, nc) || !this->Ring(Prev(o), rd, nd))
+    {
+      return false;
+    }
+    for (int i = 0; i < nc; ++i)
+    {
+      const Id u = rc[i];
+      if (u == d)
+      {
+        return false;
+      }
+      if (u != x && u != y && std::find(rd, rd + nd, u) != rd + nd)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Where half-edge q of a flipped triangle is after the round's flips (q is not the
+  // flipped edge itself: that one is only its own partner's partner).
+  Id Moved(Id q) const
+  {
+    const Id H = this->RecH[q / 3], O = this->RecO[q / 3];
+    const Id t1 = H / 3, t2 = O / 3;
+    return q == Next(H) ? 3 * t2 + 1
+      : q == Prev(H)    ? 3 * t1 + 2
+      : q == Next(O)    ? 3 * t1
+                        : 3 * t2; // Prev(O)
+  }
+
+  vtkIdType* C;
+  Id T, N;
+  const double* X;
+  const float* Normal;
+  std::vector<Id> Opp;
+  std::vector<float> Gains;
+  std::vector<Id> Best;
+  std::vector<Id> RecH, RecO; // per triangle flipped this round: the flip's two half-edges
+};
+
+template <typename Id>
+vtkIdType FlipMesh<Id>::Build()
+{
+  // Half-edges gathered by their lower vertex (CSR). Each thread owns a range of lower
+  // vertices and reads all the triangles (cheap, sequential) to gather its own.
+  const Id parts = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
+  const Id n = this->N, h3 = 3 * this->T;
+  auto forEachOfPart = [&](Id part, auto&& visit) {
+    const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
+    const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
+    for (Id h = 0; h < h3; h += 3)
+    {
+      for (Id k = 0; k < 3; ++k)
+      {
+        const Id a = static_cast<Id>(this->C[h + k]);
+        const Id b = static_cast<Id>(this->C[h + (k == 2 ? 0 : k + 1)]);
+        const Id low = std::min(a, b);
+        if (low >= lo && low < hi)
+        {
+          visit(low, std::max(a, b), h + k);
+        }
+      }
+    }
+  };
+  std::vector<Id> start(n + 1, 0);
+  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType part = b; part < e; ++part)
+    {
+      forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id) { ++start[low + 1]; });
+    }
+  });
+  for (Id k = 0; k < n; ++k)
+  {
+    start[k + 1] += start[k];
+  }
+  std::vector<std::pair<Id, Id>> entries(h3); // (upper vertex, half-edge)
+  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType part = b; part < e; ++part)
+    {
+      const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
+      const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
+      std::vector<Id> fill(start.begin() + lo, start.begin() + hi);
+      forEachOfPart(static_cast<Id>(part),
+        [&](Id low, Id high, Id h) { entries[fill[low - lo]++] = { high, h }; });
+    }
+  });
+  this->Opp.assign(h3, -1);
+  std::atomic<vtkIdType> boundary{ 0 };
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    vtkIdType count = 0;
+    for (vtkIdType v = b; v < e; ++v)
+    {
+      auto first = entries.begin() + start[v], last = entries.begin() + start[v + 1];
+      std::sort(first, last);
+      for (auto x = first; x != last;)
+      {
+        auto y = x + 1;
+        while (y != last && y->first == x->first)
+        {
+          ++y;
+        }
+        if (y - x == 1)
+        {
+          ++count;
+        }
+        else if (y - x == 2)
+        {
+          const Id h1 = x->second, h2 = (x + 1)->second;
+          if (this->From(h1) == this->To(h2) && this->To(h1) == this->From(h2))
+          {
+            this->Opp[h1] = h2;
+            this->Opp[h2] = h1;
+          }
+        }
+        x = y;
+      }
+    }
+    boundary += count;
+  });
+  return boundary;
+}
+
+template <typename Id>
+vtkIdType FlipMesh<Id>::Round()
+{
+  const Id h3 = 3 * this->T;
+  PiPassTimer lap("PiFlipEdgesToCurvature");
+  // The gain of every edge, written by its lower half-edge into both. After the first
+  // round only the edges of the triangles flipped last round change (a gain depends on
+  // the edge's two triangles only); an edge between two of them is computed by its
+  // lower half-edge.
+  if (this->Gains.empty())
+  {
+    this->Gains.resize(h3);
+    this->RecH.assign(this->T, -1);
+    this->RecO.assign(this->T, -1);
+    vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
+      for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
+      {
+        const Id o = this->Opp[h];
+        if (o < 0)
+        {
+          this->Gains[h] = 0;
+        }
+        else if (h < o)
+        {
+          this->Gains[h] = this->Gains[o] = this->Gain(h, o);
+        }
+      }
+    });
+  }
+  else
+  {
+    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+      for (Id t = static_cast<Id>(b); t < static_cast<Id>(e); ++t)
+      {
+        if (this->RecH[t] < 0)
+        {
+          continue;
+        }
+        for (Id h = 3 * t; h < 3 * t + 3; ++h)
+        {
+          const Id o = this->Opp[h];
+          if (o < 0)
+          {
+            this->Gains[h] = 0;
+          }
+          else if (h < o || this->RecH[o / 3] < 0)
+          {
+            this->Gains[h] = this->Gains[o] = this->Gain(h, o);
+          }
+        }
+      }
+    });
+    std::fill(this->RecH.begin(), this->RecH.end(), Id(-1));
+    std::fill(this->RecO.begin(), this->RecO.end(), Id(-1));
+  }
+  lap("gains");
+  // Each triangle's best edge (ties: the lower of the pair's half-edge ids).
+  this->Best.resize(this->T);
+  vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+    for (Id t = static_cast<Id>(b); t < static_cast<Id>(e); ++t)
+    {
+      Id best = -1, bestKey = 0;
+      float bestGain = 0;
+      for (Id h = 3 * t; h < 3 * t + 3; ++h)
+      {
+        const float g = this->Gains[h];
+        if (g > 0)
+        {
+          const Id key = std::min(h, this->Opp[h]);
+          if (best < 0 || g > bestGain || (g == bestGain && key < bestKey))
+          {
+            best = h;
+            bestGain = g;
+            bestKey = key;
+          }
+        }
+      }
+      this->Best[t] = best;
+    }
+  });
+  lap("best");
+  // The flips: edges that are the best of both their triangles (so each triangle is in
+  // one flip at most) and keep the mesh manifold, checked on the mesh before the round.
+  std::atomic<vtkIdType> flips{ 0 };
+  vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
+    vtkIdType count = 0;
+    for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
+    {
+      const Id o = this->Opp[h];
+      if (o > h && this->Best[h / 3] == h && this->Best[o / 3] == o && this->KeepsManifold(h, o))
+      {
+        this->RecH[h / 3] = this->RecH[o / 3] = h;
+        this->RecO[h / 3] = this->RecO[o / 3] = o;
+        ++count;
+      }
+    }
+    flips += count;
+  });
+  lap("chosen");
+  if (flips == 0)
+  {
+    return 0;
+  }
+  // (x, y, c) and (y, x, d) become (x, d, c) and (d, y, c); the outer half-edges move to
+  // their new slots and their partners follow (written here when the partner's
+  // triangle is not flipped itself, else by its own flip).
+  vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+    for (Id t1 = static_cast<Id>(b); t1 < static_cast<Id>(e); ++t1)
+    {
+      const Id H = this->RecH[t1], O = this->RecO[t1];
+      if (H < 0 || H / 3 != t1)
+      {
+        continue;
+      }
+      const Id t2 = O / 3;
+      const Id x = this->From(H), y = this->To(H), c = this->From(Prev(H)), d = this->From(Prev(O));
+      const Id outer[4] = { Next(H), Prev(H), Next(O), Prev(O) };
+      const Id slot[4] = { 3 * t2 + 1, 3 * t1 + 2, 3 * t1, 3 * t2 };
+      Id partner[4];
+      for (int k = 0; k < 4; ++k)
+      {
+        partner[k] = this->Opp[outer[k]];
+      }
+      this->C[3 * t1] = x;
+      this->C[3 * t1 + 1] = d;
+      this->C[3 * t1 + 2] = c;
+      this->C[3 * t2] = d;
+      this->C[3 * t2 + 1] = y;
+      this->C[3 * t2 + 2] = c;
+      for (int k = 0; k < 4; ++k)
+      {
+        const Id p = partner[k];
+        if (p < 0)
+        {
+          this->Opp[slot[k]] = -1;
+          continue;
+        }
+        const bool partnerFlipped = this->RecH[p / 3] >= 0;
+        this->Opp[slot[k]] = partnerFlipped ? this->Moved(p) : p;
+        if (!partnerFlipped)
+        {
+          this->Opp[p] = slot[k];
+        }
+      }
+      this->Opp[3 * t1 + 1] = 3 * t2 + 2;
+      this->Opp[3 * t2 + 2] = 3 * t1 + 1;
+    }
+  });
+  lap("applied");
+  return flips;
+}
+
+template <typename Id>
+PiEdgeFlipResult Run(vtkIdType* connectivity, vtkIdType triangles, vtkIdType points,
+  const double* xyz, const float* normals, int rounds)
+{
+  PiEdgeFlipResult result;
+  FlipMesh<Id> mesh(connectivity, triangles, points, xyz, normals);
+  PiPassTimer lap("PiFlipEdgesToCurvature");
+  result.BoundaryEdges = mesh.Build();
+  lap("build");
+  for (int r = 0; r < rounds; ++r)
+  {
+    const vtkIdType flips = mesh.Round();
+    if (flips == 0)
+    {
+      break;
+    }
+    result.Flips += flips;
+    ++result.Rounds;
+  }
+  return result;
+}
+}
+
+PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
+  vtkIdType points, const double* xyz, const float* normals, int rounds)
+{
+  // 32-bit half-edge ids when they fit: half the memory traffic.
+  if (3 * triangles < std::numeric_limits<std::int32_t>::max() &&
+    points < std::numeric_limits<std::int32_t>::max())
+  {
+    return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
+  }
+  return Run<std::int64_t>(connectivity, triangles, points, xyz, normals, rounds);
+}
