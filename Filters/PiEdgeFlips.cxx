@@ -190,6 +190,26 @@ private:
     return true;
   }
 
+  // Whether the edge of half-edge s (key: its pair's lower half-edge) has the largest
+  // gain of the triangle of s (ties: the lower key wins).
+  bool IsBest(Id s, Id key) const
+  {
+    const float g = this->Gains[s];
+    for (Id h = 3 * (s / 3); h < 3 * (s / 3) + 3; ++h)
+    {
+      if (h == s)
+      {
+        continue;
+      }
+      const float other = this->Gains[h];
+      if (other > g || (other == g && std::min(h, this->Opp[h]) < key))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
   // Where half-edge q of a flipped triangle is after the round's flips (q is not the
   // flipped edge itself: that one is only its own partner's partner).
   Id Moved(Id q) const
@@ -208,7 +228,6 @@ private:
   const float* Normal;
   std::vector<Id> Opp;
   std::vector<float> Gains;
-  std::vector<Id> Best;
   std::vector<Id> RecH, RecO; // per triangle flipped this round: the flip's two half-edges
 };
 
@@ -350,31 +369,6 @@ vtkIdType FlipMesh<Id>::Round()
     std::fill(this->RecO.begin(), this->RecO.end(), Id(-1));
   }
   lap("gains");
-  // Each triangle's best edge (ties: the lower of the pair's half-edge ids).
-  this->Best.resize(this->T);
-  vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-    for (Id t = static_cast<Id>(b); t < static_cast<Id>(e); ++t)
-    {
-      Id best = -1, bestKey = 0;
-      float bestGain = 0;
-      for (Id h = 3 * t; h < 3 * t + 3; ++h)
-      {
-        const float g = this->Gains[h];
-        if (g > 0)
-        {
-          const Id key = std::min(h, this->Opp[h]);
-          if (best < 0 || g > bestGain || (g == bestGain && key < bestKey))
-          {
-            best = h;
-            bestGain = g;
-            bestKey = key;
-          }
-        }
-      }
-      this->Best[t] = best;
-    }
-  });
-  lap("best");
   // The flips: edges that are the best of both their triangles (so each triangle is in
   // one flip at most) and keep the mesh manifold, checked on the mesh before the round.
   std::atomic<vtkIdType> flips{ 0 };
@@ -383,7 +377,8 @@ vtkIdType FlipMesh<Id>::Round()
     for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
     {
       const Id o = this->Opp[h];
-      if (o > h && this->Best[h / 3] == h && this->Best[o / 3] == o && this->KeepsManifold(h, o))
+      if (o > h && this->Gains[h] > 0 && this->IsBest(h, h) && this->IsBest(o, h) &&
+        this->KeepsManifold(h, o))
       {
         this->RecH[h / 3] = this->RecH[o / 3] = h;
         this->RecO[h / 3] = this->RecO[o / 3] = o;

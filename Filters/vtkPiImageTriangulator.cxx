@@ -345,6 +345,7 @@ struct Triangulation
   std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
   std::vector<Computed> Points;        // computed points, by key
   std::atomic<bool> Abort{ false };
+  bool ChooseDiagonals = true; // split lattice polygons by Bend (else fan them)
 
   bool Aborted()
   {
@@ -929,14 +930,27 @@ void Triangulation::RunLattice(const Lattice& L)
               distinct = distinct && v[q].Key != v[k].Key;
             }
           }
-          if (size == 3 || !distinct)
+          if (size == 3 || !distinct || !this->ChooseDiagonals)
           {
-            // (two corners on one hit: the case's own fan, degenerate triangles dropped later)
+            // A fan from the first corner: no choice to make, EdgeFlipRounds 0, or two
+            // corners on one hit (degenerate triangles are dropped later).
             for (int k = 1; k + 1 < size; ++k)
             {
               tris.push_back(v[0].Key);
               tris.push_back(v[k].Key);
               tris.push_back(v[k + 1].Key);
+            }
+            continue;
+          }
+          if (size == 4)
+          {
+            // (the common case: the shorter bend of the two diagonals)
+            const int d = Bend(v[0].P, v[0].N, v[2].P, v[2].N) <= Bend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
+            for (int t = 0; t < 2; ++t)
+            {
+              tris.push_back(v[d].Key);
+              tris.push_back(v[d + 1 + t].Key);
+              tris.push_back(v[(d + 2 + t) % 4].Key);
             }
             continue;
           }
@@ -1581,6 +1595,7 @@ int vtkPiImageTriangulator::RequestData(
       vtkErrorMacro(<< "The ray lattice of " << cells << " cells is too large");
       return 0;
     }
+    T.ChooseDiagonals = this->EdgeFlipRounds > 0;
     T.RunLattice(L);
   }
   else

@@ -134,6 +134,16 @@ tri_mesh = servermanager.Fetch(triangulation)
 check(tri_mesh.GetNumberOfCells() > 1000, "triangulation has triangles")
 check(tri_mesh.GetFieldData().GetArray("BoundaryEdges").GetValue(0) == 0, "triangulation is closed")
 check(tri_mesh.GetPointData().GetArray("Singular") is not None, "Singular on the mesh")
+check(triangulation.EdgeFlipRounds == cxx_tri.GetEdgeFlipRounds() == 1, "EdgeFlipRounds default")
+unflipped = ImageBasedTriangulation(Input=rays, EdgeFlipRounds=0)
+unflipped_mesh = servermanager.Fetch(unflipped)
+check(unflipped_mesh.GetNumberOfPoints() == tri_mesh.GetNumberOfPoints() and
+      unflipped_mesh.GetNumberOfCells() == tri_mesh.GetNumberOfCells() and
+      unflipped_mesh.GetFieldData().GetArray("BoundaryEdges").GetValue(0) == 0,
+      "EdgeFlipRounds 0: the same vertices and triangle count, closed")
+edges = lambda m: set(tuple(sorted((m.GetCell(c).GetPointId(k), m.GetCell(c).GetPointId((k + 1) % 3))))
+                      for c in range(m.GetNumberOfCells()) for k in range(3))
+check(edges(unflipped_mesh) != edges(tri_mesh), "EdgeFlipRounds changes the edges")
 check(source.Method == "Flying Edges" and vtkPiSurfaceSource().GetMethod() == 0, "Method default")
 by_rays = PiSurface(Method="Ray Cast Triangulation", Resolution=48)
 by_rays_mesh = servermanager.Fetch(by_rays)
