@@ -109,7 +109,10 @@ public:
   /// flips, in parallel, the edges that are the best choice of both their triangles.
   /// Vertices, boundary and topology are unchanged; the triangles follow the surface's
   /// directions of least bending and its creases instead of the lattice's. (Within a
-  /// lattice cell the same measure already picks the diagonals of each polygon.)
+  /// lattice cell the same measure already picks the diagonals of each polygon; with 0
+  /// the polygons are fanned from their first corner, as marching cubes does.) The
+  /// first round, with that choice, adds about a quarter to the time, further rounds
+  /// under a tenth each.
   vtkSetClampMacro(EdgeFlipRounds, int, 0, 100);
   vtkGetMacro(EdgeFlipRounds, int);
   ///@}
