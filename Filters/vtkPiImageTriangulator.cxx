@@ -153,10 +153,10 @@ struct Computed
   double P[3];
   int View;
   // From the exact gradient (Triangulation::Attributes): unit normal, the nearest
-  // factor, log|∇F|.
+  // factor, the singular test.
   float N[3];
   int Nearest;
-  double LogGradient;
+  bool Singular;
 };
 
 // |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q (the
@@ -346,6 +346,7 @@ struct Triangulation
   std::vector<Computed> Points;        // computed points, by key
   std::atomic<bool> Abort{ false };
   bool ChooseDiagonals = true; // split lattice polygons by Bend (else fan them)
+  double Probe = 0, SingularTolerance = 0.1; // the singular test of computed points
 
   bool Aborted()
   {
@@ -356,15 +357,17 @@ struct Triangulation
     return this->Abort;
   }
 
-  // The exact-gradient attributes of a computed point.
+  // The exact-gradient attributes of a computed point (and its singular test, as the
+  // ray caster's for its hits).
   void Attributes(Computed& c) const
   {
     double nrm[3] = { 0, 0, 0 }, g = 0;
     c.Nearest = -1;
-    c.LogGradient = -std::numeric_limits<double>::infinity();
+    c.Singular = false;
     if (this->Kernel)
     {
-      this->Kernel->EvaluateVertex(c.P, nrm, g, c.Nearest, &c.LogGradient);
+      c.Singular =
+        this->Caster->Attributes(c.P, this->Probe, this->SingularTolerance, nrm, g, c.Nearest);
     }
     for (int k = 0; k < 3; ++k)
     {
@@ -1596,6 +1599,8 @@ int vtkPiImageTriangulator::RequestData(
       return 0;
     }
     T.ChooseDiagonals = this->EdgeFlipRounds > 0;
+    T.Probe = 1e-3 * T.Size;
+    T.SingularTolerance = this->SingularTolerance;
     T.RunLattice(L);
   }
   else
@@ -1785,7 +1790,6 @@ int vtkPiImageTriangulator::RequestData(
   auto* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = outNormals->GetPointer(0);
   // In output order (written in sequence): hits copy, computed points evaluate.
-  const double probe = 1e-3 * T.Size;
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType k = b; k < e; ++k)
     {
@@ -1804,9 +1808,7 @@ int vtkPiImageTriangulator::RequestData(
       std::copy(c.P, c.P + 3, xyz + 3 * k);
       std::copy(c.N, c.N + 3, nrmOut + 3 * k);
       outView->SetValue(k, c.View);
-      const bool isSingular =
-        T.Kernel && T.Caster->IsSingular(c.P, c.LogGradient, probe, this->SingularTolerance);
-      outSingular->SetValue(k, isSingular ? 1 : 0);
+      outSingular->SetValue(k, c.Singular ? 1 : 0);
       outFactor->SetValue(k, c.Nearest);
     }
   });

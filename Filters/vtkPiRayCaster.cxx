@@ -705,12 +705,12 @@ int vtkPiRayCaster::RequestData(
     for (vtkIdType k = begin; k < end; ++k)
     {
       const Hit& hit = hits[k];
-      double nrm[3], g, logGradient;
+      double nrm[3], g;
       int nearest;
-      kernel->EvaluateVertex(hit.P, nrm, g, nearest, &logGradient);
       // Singular: F grows faster than linearly away from the hit.
-      singular->SetValue(
-        k, caster.IsSingular(hit.P, logGradient, probe, this->SingularTolerance) ? 1 : 0);
+      const bool isSingular =
+        caster.Attributes(hit.P, probe, this->SingularTolerance, nrm, g, nearest);
+      singular->SetValue(k, isSingular ? 1 : 0);
       points->SetPoint(k, hit.P);
       normals->SetTuple3(k, nrm[0], nrm[1], nrm[2]);
       gradient->SetValue(k, g);

@@ -341,6 +341,71 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
   return v;
 }
 
+void Polynomial3::EvaluateStar(
+  const double p[3], const double step[3], double values[7], double g[3]) const
+{
+  if (this->Quadric)
+  {
+    const double* q = this->Q;
+    const double x = p[0], y = p[1], z = p[2];
+    values[0] = QuadricValue(q, x, y, z);
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        double r[3] = { x, y, z };
+        r[a] += side ? step[a] : -step[a];
+        values[1 + 2 * a + side] = QuadricValue(q, r[0], r[1], r[2]);
+      }
+    }
+    g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
+    g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
+    g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+    return;
+  }
+  const int n = std::max(this->Degree, 0);
+  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  this->PowerTables(p, px, py, pz);
+  // sum[a][m]: the terms with power m of variable a, without that variable's power.
+  double sum[3][MaxDegree + 1];
+  for (int a = 0; a < 3; ++a)
+  {
+    std::fill(sum[a], sum[a] + n + 1, 0.0);
+  }
+  for (const auto& t : this->Terms)
+  {
+    const double c = t.Coefficient;
+    sum[0][t.I] += c * py[t.J] * pz[t.K];
+    sum[1][t.J] += c * px[t.I] * pz[t.K];
+    sum[2][t.K] += c * px[t.I] * py[t.J];
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    int top = n;
+    while (top > 0 && sum[a][top] == 0.0)
+    {
+      --top;
+    }
+    const double* c = sum[a];
+    double v = 0.0, d = 0.0, minus = 0.0, plus = 0.0;
+    const double x = p[a], xm = p[a] - step[a], xp = p[a] + step[a];
+    for (int m = top; m >= 0; --m)
+    {
+      d = d * x + v;
+      v = v * x + c[m];
+      minus = minus * xm + c[m];
+      plus = plus * xp + c[m];
+    }
+    if (a == 0)
+    {
+      values[0] = v;
+    }
+    g[a] = d;
+    values[1 + 2 * a] = minus;
+    values[2 + 2 * a] = plus;
+  }
+}
+
 namespace
 {
 // [a, b]^n with exact handling of even powers.

@@ -69,6 +69,13 @@ public:
   void EvaluateMany(const double* p, int n, double* values) const;
   /// Value and gradient at p. Cost: O(degree + 3·terms).
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// At p and at the six points p ± step[a]·e_a, with the gradient at p, in one pass:
+  /// the terms are summed by the power of each variable separately (three partial-sum
+  /// polynomials, 6 multiplications per term), then each axis is a univariate Horner
+  /// evaluation. values[0] = P(p), values[1 + 2a] = P(p − step[a]·e_a),
+  /// values[2 + 2a] = P(p + step[a]·e_a). The sums are formed in another order than
+  /// Evaluate's, so the results may differ from it in the last bits.
+  void EvaluateStar(const double p[3], const double step[3], double values[7], double g[3]) const;
   /// An enclosure of P over the box x ∈ box[0], y ∈ box[1], z ∈ box[2] (term-wise
   /// interval arithmetic; exact powers, so squares are never negative). Cost: O(terms).
   /// It also holds every value our evaluations compute there (Evaluate, the gradient's

@@ -157,6 +157,35 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
   return v;
 }
 
+void PolynomialFactor::EvaluateStar(const double p[3], double h, double values[7], double g[3]) const
+{
+  const double(*A)[3] = this->A;
+  if (A[0][1] == 0 && A[0][2] == 0 && A[1][0] == 0 && A[1][2] == 0 && A[2][0] == 0 &&
+    A[2][1] == 0)
+  {
+    // p ± h·e_a is q ± h·A_aa·e_a in the local frame.
+    double q[3], gl[3];
+    this->ToLocal(p, q);
+    const double step[3] = { h * A[0][0], h * A[1][1], h * A[2][2] };
+    this->Poly.EvaluateStar(q, step, values, gl);
+    for (int a = 0; a < 3; ++a)
+    {
+      g[a] = A[a][a] * gl[a];
+    }
+    return;
+  }
+  values[0] = this->EvaluateWithGradient(p, g);
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      double r[3] = { p[0], p[1], p[2] };
+      r[a] += side ? h : -h;
+      values[1 + 2 * a + side] = this->Evaluate(r);
+    }
+  }
+}
+
 Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
 {
   // The local box of the affine image: centre mapped, half extents through |A|.

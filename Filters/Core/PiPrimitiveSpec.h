@@ -117,6 +117,11 @@ struct PolynomialFactor
     return this->Poly.Evaluate(q);
   }
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// f and ∇f at p and f at the six points p ± h·e_a (world axes), as
+  /// Polynomial3::EvaluateStar orders them. One pass over the terms when the local
+  /// frame is axis-aligned (A diagonal: translated and scaled primitives, expressions);
+  /// otherwise seven evaluations.
+  void EvaluateStar(const double p[3], double h, double values[7], double g[3]) const;
   /// An enclosure of f over the axis-aligned world box [b0,b1]x[b2,b3]x[b4,b5]: the
   /// intersection of the term-wise interval evaluation and, after PrepareIntervals(),
   /// the mean-value form f(c) + Σ ∂f(box)·[−h, h], whose width shrinks as h².

@@ -501,6 +501,62 @@ void ProductKernel::EvaluateScaledMany(
   }
 }
 
+void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double normal[3],
+  double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
+  long probeExponent[6]) const
+{
+  ScaledProduct s;
+  double m[6] = { 1, 1, 1, 1, 1, 1 };
+  long e[6] = { 0, 0, 0, 0, 0, 0 };
+  double best = std::numeric_limits<double>::infinity();
+  nearest = -1;
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    const Factor& f = this->Factors[k];
+    double v[7], gi[3];
+    if (f.IsPolynomial)
+    {
+      f.Polynomial.EvaluateStar(p, probe, v, gi);
+    }
+    else
+    {
+      v[0] = f.Generic(p, gi);
+      for (int a = 0; a < 6; ++a)
+      {
+        double r[3] = { p[0], p[1], p[2] };
+        r[a / 2] += a % 2 ? probe : -probe;
+        v[1 + a] = f.Generic(r, nullptr);
+      }
+    }
+    const double fi = v[0];
+    const double g2 = gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2];
+    const double d = g2 > 0 ? fi * fi / g2
+                            : (fi == 0 ? 0.0 : std::numeric_limits<double>::infinity());
+    if (nearest < 0 || d < best)
+    {
+      nearest = static_cast<int>(k);
+      best = d;
+    }
+    s.Multiply(fi, gi);
+    for (int a = 0; a < 6; ++a)
+    {
+      Accumulate(m[a], e[a], v[1 + a]);
+    }
+  }
+  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
+  gradientNorm = SafeLdexp(gn, s.E);
+  logGradientNorm = gn > 0 ? std::log(gn) + static_cast<double>(s.E) * std::log(2.0)
+                           : -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+  {
+    normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;
+  }
+  for (int a = 0; a < 6; ++a)
+  {
+    FinishScaled(m[a], e[a], this->Blending, probeMantissa[a], probeExponent[a]);
+  }
+}
+
 int ProductKernel::EvaluateSignAndLog(const double p[3], double& logAbs) const
 {
   double m;

@@ -83,6 +83,15 @@ public:
   /// if asked, ln|∇F| without clamping (−inf where ∇F = 0).
   void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest,
     double* logGradientNorm = nullptr) const;
+  /// EvaluateVertex and the values of F at the six points p ± probe·e_a (as mantissa·
+  /// 2^exponent, ordered as Polynomial3::EvaluateStar: −x, +x, −y, +y, −z, +z) in one
+  /// pass over the factors, each factor's terms read once (PolynomialFactor::
+  /// EvaluateStar): the attributes of a surface point and its singularity probes
+  /// (RayCaster::IsSingular) for a third of the separate evaluations' work. The results
+  /// may differ from EvaluateVertex's and EvaluateScaledMany's in the last bits.
+  void EvaluateVertexStar(const double p[3], double probe, double normal[3],
+    double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
+    long probeExponent[6]) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// The same at n <= 8 points (xyz interleaved), factor by factor: each result is

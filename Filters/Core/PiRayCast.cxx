@@ -160,6 +160,11 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
   }
 }
 
+// Whether |∇F|·probe is at most `tolerance` times the largest of the six probe values
+// |F| = |mantissa|·2^exponent (in logarithms: no overflow).
+static bool ProbesSayZeroGradient(
+  double logGradient, double probe, double tolerance, const double* mantissa, const long* exponent);
+
 bool RayCaster::IsSingular(
   const double p[3], double logGradient, double probe, double tolerance) const
 {
@@ -176,6 +181,22 @@ bool RayCaster::IsSingular(
     q[3 * a + a / 2] += (a % 2 ? probe : -probe);
   }
   this->Kernel.EvaluateScaledMany(q, 6, mantissa, exponent);
+  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
+}
+
+bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
+  double& gradientNorm, int& nearest) const
+{
+  double logGradient, mantissa[6];
+  long exponent[6];
+  this->Kernel.EvaluateVertexStar(
+    p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
+  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
+}
+
+static bool ProbesSayZeroGradient(
+  double logGradient, double probe, double tolerance, const double* mantissa, const long* exponent)
+{
   double bestMantissa = 0.0;
   long bestExponent = 0;
   for (int a = 0; a < 6; ++a)

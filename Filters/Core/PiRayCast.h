@@ -37,6 +37,12 @@ public:
   /// magnitude over the surface.
   bool IsSingular(const double p[3], double logGradient, double probe, double tolerance) const;
 
+  /// The attributes of a surface point in one pass (ProductKernel::EvaluateVertexStar):
+  /// unit normal, |∇F|, nearest factor; returns whether it is singular by IsSingular's
+  /// test.
+  bool Attributes(const double p[3], double probe, double tolerance, double normal[3],
+    double& gradientNorm, int& nearest) const;
+
   /// Roots on [t0, t1] of the product whose polynomial factors are already restricted
   /// to the ray (GetLineCoefficientCount() coefficients, as ProductKernel::RestrictLine
   /// or RayGrid::Restrict write them). Only for polynomial kernels.

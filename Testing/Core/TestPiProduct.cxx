@@ -1117,3 +1117,58 @@ TEST_F(ManySpheres, NearestFactorPicksTheSphereUnderThePoint)
     EXPECT_EQ(Kernel->NearestFactor(q), best);
   }
 }
+
+// The one-pass attributes of a surface point (EvaluateVertexStar): the normal, |∇F|,
+// the nearest factor and the six probe values agree with EvaluateVertex and
+// EvaluateScaledMany (rotated primitives, expressions and generic factors included).
+TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
+{
+  Random rng(45);
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    std::vector<Factor> factors;
+    const int n = 1 + trial % 5;
+    for (int i = 0; i < n; ++i)
+      factors.push_back(RandomPrimitive(rng));
+    if (trial % 4 == 3)
+      factors.push_back(Wave());
+    const double r = trial % 2 ? 0.05 : 0.0;
+    const ProductKernel k(factors, r);
+    for (int s = 0; s < 20; ++s)
+    {
+      const Point p = rng.InBox(-2, 2);
+      const double probe = trial % 3 == 0 ? 1e-3 : 0.05;
+      double n1[3], n2[3], g1, g2, log1, log2, m1[6], m2[6];
+      long e1[6], e2[6];
+      int near1, near2;
+      k.EvaluateVertex(p.data(), n1, g1, near1, &log1);
+      k.EvaluateVertexStar(p.data(), probe, n2, g2, near2, log2, m2, e2);
+      double q[18];
+      for (int a = 0; a < 6; ++a)
+      {
+        for (int c = 0; c < 3; ++c)
+          q[3 * a + c] = p[c];
+        q[3 * a + a / 2] += a % 2 ? probe : -probe;
+      }
+      k.EvaluateScaledMany(q, 6, m1, e1);
+      const double cond = Conditioning(factors, p.data());
+      const double tol = std::max(1e-12, 1e-14 * cond);
+      EXPECT_NEAR(g2, g1, tol * std::fabs(g1)) << "trial " << trial;
+      EXPECT_NEAR(log2, log1, tol + 1e-12) << "trial " << trial;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(n2[c], n1[c], tol) << "trial " << trial << " normal " << c;
+      EXPECT_EQ(near2, near1);
+      for (int a = 0; a < 6; ++a)
+      {
+        const double v1 = std::ldexp(m1[a], static_cast<int>(e1[a]));
+        const double v2 = std::ldexp(m2[a], static_cast<int>(e2[a]));
+        double P = 1.0;
+        for (const Factor& f : factors)
+          P *= f.Evaluate(q + 3 * a);
+        const double probeCond = Conditioning(factors, q + 3 * a);
+        EXPECT_NEAR(v2, v1, std::max(1e-12, 1e-14 * probeCond) * std::fabs(P) + 1e-15 * r)
+          << "trial " << trial << " probe " << a;
+      }
+    }
+  }
+}
