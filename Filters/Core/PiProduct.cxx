@@ -505,15 +505,24 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
   double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
   long probeExponent[6]) const
 {
+  // The factors' values (at p and the six probes) and gradients, then their products:
+  // in plain doubles when no product can leave the double range (at most 15 factors,
+  // every value and gradient component 0 or within 2^±64), else in the scaled form.
+  constexpr size_t MaxPlain = 15;
+  const size_t count = this->Factors.size();
+  double values[MaxPlain][7], gradients[MaxPlain][3];
+  bool plain = count <= MaxPlain;
   ScaledProduct s;
   double m[6] = { 1, 1, 1, 1, 1, 1 };
   long e[6] = { 0, 0, 0, 0, 0, 0 };
   double best = std::numeric_limits<double>::infinity();
   nearest = -1;
-  for (size_t k = 0; k < this->Factors.size(); ++k)
+  for (size_t k = 0; k < count; ++k)
   {
     const Factor& f = this->Factors[k];
-    double v[7], gi[3];
+    double local[7], localG[3];
+    double* v = plain ? values[k] : local;
+    double* gi = plain ? gradients[k] : localG;
     if (f.IsPolynomial)
     {
       f.Polynomial.EvaluateStar(p, probe, v, gi);
@@ -537,10 +546,49 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
       nearest = static_cast<int>(k);
       best = d;
     }
-    s.Multiply(fi, gi);
-    for (int a = 0; a < 6; ++a)
+    if (plain)
     {
-      Accumulate(m[a], e[a], v[1 + a]);
+      for (int c = 0; c < 10 && plain; ++c)
+      {
+        const double a = std::fabs(c < 7 ? v[c] : gi[c - 7]);
+        plain = a == 0.0 || (a >= 0x1p-64 && a <= 0x1p64);
+      }
+      if (!plain)
+      {
+        // Out of the plain range: the factors so far go to the scaled form.
+        for (size_t q = 0; q <= k; ++q)
+        {
+          s.Multiply(values[q][0], gradients[q]);
+          for (int a = 0; a < 6; ++a)
+          {
+            Accumulate(m[a], e[a], values[q][1 + a]);
+          }
+        }
+      }
+    }
+    else
+    {
+      s.Multiply(fi, gi);
+      for (int a = 0; a < 6; ++a)
+      {
+        Accumulate(m[a], e[a], v[1 + a]);
+      }
+    }
+  }
+  if (plain)
+  {
+    for (size_t k = 0; k < count; ++k)
+    {
+      const double f = values[k][0];
+      for (int c = 0; c < 3; ++c)
+      {
+        s.G[c] = s.G[c] * f + s.P * gradients[k][c];
+      }
+      s.P *= f;
+      for (int a = 0; a < 6; ++a)
+      {
+        m[a] *= values[k][1 + a];
+      }
     }
   }
   const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);

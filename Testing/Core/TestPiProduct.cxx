@@ -1172,3 +1172,44 @@ TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
     }
   }
 }
+
+// The same where plain doubles would overflow: 300 far spheres (a product of about
+// 10^1200, beyond the double range: the scaled form from the start) and a factor
+// with values beyond 2^64 after plain ones (the switch to the scaled form midway).
+TEST(ProductKernel, StarEvaluationOfHugeProducts)
+{
+  auto check = [](const ProductKernel& k, const double p[3], double probe) {
+    double n1[3], n2[3], g1, g2, log1, log2, m1[6], m2[6];
+    long e1[6], e2[6];
+    int near1, near2;
+    k.EvaluateVertex(p, n1, g1, near1, &log1);
+    k.EvaluateVertexStar(p, probe, n2, g2, near2, log2, m2, e2);
+    double q[18];
+    for (int a = 0; a < 6; ++a)
+    {
+      for (int c = 0; c < 3; ++c)
+        q[3 * a + c] = p[c];
+      q[3 * a + a / 2] += a % 2 ? probe : -probe;
+    }
+    k.EvaluateScaledMany(q, 6, m1, e1);
+    EXPECT_NEAR(log2, log1, 1e-10 * std::fabs(log1));
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(n2[c], n1[c], 1e-10);
+    EXPECT_EQ(near2, near1);
+    for (int a = 0; a < 6; ++a)
+    {
+      EXPECT_EQ(e2[a], e1[a]) << "probe " << a;
+      EXPECT_NEAR(m2[a], m1[a], 1e-10) << "probe " << a;
+    }
+  };
+  std::vector<Factor> far;
+  for (int i = 0; i < 300; ++i)
+  {
+    const double c[3] = { 100.0 + i, 50.0, -20.0 };
+    far.push_back(Sphere(c, 0.5));
+  }
+  const double p[3] = { 0.3, -0.2, 0.1 };
+  check(ProductKernel(far, 1.0), p, 1e-3);
+  const double o[3] = { 0, 0, 0 }, big[3] = { 1e25, 0, 0 };
+  check(ProductKernel({ Sphere(o, 1.0), Sphere(big, 1.0), Plane(0, 0, 1) }, 0.25), p, 1e-2);
+}
