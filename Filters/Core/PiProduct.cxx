@@ -391,6 +391,19 @@ double ProductKernel::EvaluateCompressed(const double p[3]) const
   return std::copysign(value, fm);
 }
 
+// The nearest factor so far (NearestFactor's order): factor k with value f and gradient
+// g replaces it if its squared first-order distance f²/|∇f|² is smaller.
+static void KeepNearest(double f, const double g[3], int k, int& nearest, double& best)
+{
+  const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+  const double d = g2 > 0 ? f * f / g2 : (f == 0 ? 0.0 : std::numeric_limits<double>::infinity());
+  if (nearest < 0 || d < best)
+  {
+    nearest = k;
+    best = d;
+  }
+}
+
 void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
   int& nearest, double* logGradientNorm) const
 {
@@ -401,15 +414,7 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     const double fi = this->Factors[k].EvaluateWithGradient(p, gi);
-    // Squared first-order distance f²/|∇f|²: the same order, no square root.
-    const double g2 = gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2];
-    const double d = g2 > 0 ? fi * fi / g2
-                            : (fi == 0 ? 0.0 : std::numeric_limits<double>::infinity());
-    if (nearest < 0 || d < best)
-    {
-      nearest = static_cast<int>(k);
-      best = d;
-    }
+    KeepNearest(fi, gi, static_cast<int>(k), nearest, best);
     s.Multiply(fi, gi);
   }
   const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
@@ -538,14 +543,7 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
       }
     }
     const double fi = v[0];
-    const double g2 = gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2];
-    const double d = g2 > 0 ? fi * fi / g2
-                            : (fi == 0 ? 0.0 : std::numeric_limits<double>::infinity());
-    if (nearest < 0 || d < best)
-    {
-      nearest = static_cast<int>(k);
-      best = d;
-    }
+    KeepNearest(fi, gi, static_cast<int>(k), nearest, best);
     if (plain)
     {
       for (int c = 0; c < 10 && plain; ++c)

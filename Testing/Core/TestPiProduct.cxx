@@ -1118,6 +1118,17 @@ TEST_F(ManySpheres, NearestFactorPicksTheSphereUnderThePoint)
   }
 }
 
+// The six points p ± probe·e_a in EvaluateVertexStar's order (−x, +x, −y, +y, −z, +z).
+static void StarProbes(const double p[3], double probe, double q[18])
+{
+  for (int a = 0; a < 6; ++a)
+  {
+    for (int c = 0; c < 3; ++c)
+      q[3 * a + c] = p[c];
+    q[3 * a + a / 2] += a % 2 ? probe : -probe;
+  }
+}
+
 // The one-pass attributes of a surface point (EvaluateVertexStar): the normal, |∇F|,
 // the nearest factor and the six probe values agree with EvaluateVertex and
 // EvaluateScaledMany (rotated primitives, expressions and generic factors included).
@@ -1144,12 +1155,7 @@ TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
       k.EvaluateVertex(p.data(), n1, g1, near1, &log1);
       k.EvaluateVertexStar(p.data(), probe, n2, g2, near2, log2, m2, e2);
       double q[18];
-      for (int a = 0; a < 6; ++a)
-      {
-        for (int c = 0; c < 3; ++c)
-          q[3 * a + c] = p[c];
-        q[3 * a + a / 2] += a % 2 ? probe : -probe;
-      }
+      StarProbes(p.data(), probe, q);
       k.EvaluateScaledMany(q, 6, m1, e1);
       const double cond = Conditioning(factors, p.data());
       const double tol = std::max(1e-12, 1e-14 * cond);
@@ -1185,12 +1191,7 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
     k.EvaluateVertex(p, n1, g1, near1, &log1);
     k.EvaluateVertexStar(p, probe, n2, g2, near2, log2, m2, e2);
     double q[18];
-    for (int a = 0; a < 6; ++a)
-    {
-      for (int c = 0; c < 3; ++c)
-        q[3 * a + c] = p[c];
-      q[3 * a + a / 2] += a % 2 ? probe : -probe;
-    }
+    StarProbes(p, probe, q);
     k.EvaluateScaledMany(q, 6, m1, e1);
     EXPECT_NEAR(log2, log1, 1e-10 * std::fabs(log1));
     for (int c = 0; c < 3; ++c)
