@@ -40,7 +40,6 @@ public:
   vtkIdType Round();
 
 private:
-
   // |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q.
   double Bend(Id p, Id q) const
   {
@@ -121,51 +120,31 @@ private:
     return static_cast<float>(gain);
   }
 
-  // The neighbours of From(h0), h0 leaving it, into out[0, count); false if more than
-  // RingMax (or a fan that does not close up).
+  // The neighbours of From(h0), h0 leaving it, into out[0, count); false if the fan of
+  // triangles around it does not close up (a boundary, or a non-manifold edge whose
+  // other wedges this walk would not see) or has more than RingMax neighbours.
   static constexpr int RingMax = 48;
   bool Ring(Id h0, Id* out, int& count) const
   {
     count = 0;
-    Id h = h0;
-    for (;;)
+    for (Id h = h0;;)
     {
       out[count++] = this->To(h);
-      const Id p = Prev(h);
-      const Id o = this->Opp[p];
-      if (o < 0)
+      const Id o = this->Opp[Prev(h)];
+      if (o < 0 || count >= RingMax)
       {
-        out[count++] = this->From(p); // the fan is open: the other way round as well
-        break;
+        return false;
       }
       h = o;
       if (h == h0)
       {
         return true;
       }
-      if (count >= RingMax - 1)
-      {
-        return false;
-      }
-    }
-    for (h = h0;;)
-    {
-      const Id o = this->Opp[h];
-      if (o < 0)
-      {
-        return true;
-      }
-      h = Next(o);
-      if (h == h0 || count >= RingMax)
-      {
-        return false;
-      }
-      out[count++] = this->To(h);
     }
   }
 
-  // Whether the flip of h (opposite o) keeps the mesh manifold: c–d is no edge yet and
-  // x and y are the only common neighbours of c and d.
+  // Whether the flip of h (opposite o) keeps the mesh manifold: c and d have closed
+  // fans, c–d is no edge yet and x and y are the only common neighbours of c and d.
   bool KeepsManifold(Id h, Id o) const
   {
     const Id x = this->From(h), y = this->To(h), d = this->From(Prev(o));

@@ -13,8 +13,9 @@
  * creases) instead of the lattice's.
  *
  * A flip is made only when the quad is convex (both new triangles face the old
- * quad's way and agree with their vertices' normals), when c–d is not an edge yet, and
- * when x and y are the only common neighbours of c and d (so no two flips of one round
+ * quad's way and agree with their vertices' normals), when c and d are inside the mesh
+ * (their fans of triangles close up), when c–d is not an edge yet, and when x and y
+ * are the only common neighbours of c and d (so no two flips of one round
  * create the same edge and the mesh stays manifold). Each round flips, in parallel, the
  * edges that are the best candidate of both their triangles (an independent set, ties
  * broken by the pair's lower half-edge id); vertices never move, so the vertex count,
