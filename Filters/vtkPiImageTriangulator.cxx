@@ -1888,7 +1888,6 @@ int vtkPiImageTriangulator::RequestData(
   });
   offsetIds[kept] = 3 * kept;
   std::vector<vtkIdType>().swap(corner);
-  const vtkIdType* connectivity = cellIds;
   vtkNew<vtkCellArray> polys;
   polys->SetData(offsets, cells);
 
