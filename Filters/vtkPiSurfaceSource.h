@@ -15,7 +15,8 @@
  * vtkPiRayCaster casts Resolution × Resolution rays per axis view over the bounds (the
  * six axis views' first hits when OuterEnvelope is on, so closed shells inside the
  * solid are not seen; the three axis directions with all hits when it is off) and
- * vtkPiImageTriangulator connects the hits on their ray lattice. Its vertices are ray
+ * vtkPiImageTriangulator connects the hits on their ray lattice (at its defaults: the
+ * diagonals chosen by the exact normals, one round of edge flips). Its vertices are ray
  * hits, exact without ProjectVertices; ComputeGradientMagnitude does not apply.
  *
  * The default Model is the paper's Figure 1(b): two unit spheres at x = ±0.9, r = 0.25.
