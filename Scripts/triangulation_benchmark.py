@@ -33,6 +33,24 @@ from vtkmodules.vtkFiltersCore import vtkDelaunay2D, vtkThreshold
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
 
 
+def load_model(models, name):
+    """The model `name` of the folder `models` and its size (the diagonal of its bounds)."""
+    surface = vtkPiSurface()
+    surface.LoadModel("%s/%s.pisurf" % (models, name))
+    b = [0.0] * 6
+    surface.GetModelBounds(b)
+    return surface, math.sqrt(sum((b[2 * a + 1] - b[2 * a]) ** 2 for a in range(3)))
+
+
+def six_views(surface, n):
+    """A ray caster of the six axis views, n x n first hits each (not yet updated)."""
+    caster = vtkPiRayCaster()
+    caster.SetPiSurface(surface)
+    caster.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
+    caster.SetResolution(n, n)
+    return caster
+
+
 def distance(surface, p):
     g = [0.0, 0.0, 0.0]
     f = surface.EvaluateFunction(p)
@@ -162,15 +180,8 @@ def main():
         "model", "method", "time s", "vertices", "ratio", "max vtx", "rms vtx", "rms centr",
         "rms surf", "max surf"))
     for name in (sys.argv[3].split(",") if len(sys.argv) > 3 else ("cup_a1.0", "formic_acid")):
-        surface = vtkPiSurface()
-        surface.LoadModel("%s/%s.pisurf" % (models, name))
-        b = [0.0] * 6
-        surface.GetModelBounds(b)
-        size = math.sqrt(sum((b[2 * a + 1] - b[2 * a]) ** 2 for a in range(3)))
-        caster = vtkPiRayCaster()
-        caster.SetPiSurface(surface)
-        caster.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
-        caster.SetResolution(n, n)
+        surface, size = load_model(models, name)
+        caster = six_views(surface, n)
         t = time.perf_counter()
         caster.Update()
         cast = time.perf_counter() - t
@@ -244,10 +255,7 @@ def main():
         print("%-12s %-22s %9s %9d %8s" % (name, "SurfaceReconstruction", "%.3f" % srf_time
             if srf_time else "> %d" % budget, cloud.GetNumberOfPoints(), "%.1fx" % (srf_time / ours)
             if srf_time else "> %.0fx" % (budget / ours)))
-        small = vtkPiRayCaster()
-        small.SetPiSurface(surface)
-        small.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
-        small.SetResolution(128, 128)
+        small = six_views(surface, 128)
         small.Update()
         small_tri = vtkPiImageTriangulator()
         small_tri.SetInputData(small.GetOutput())

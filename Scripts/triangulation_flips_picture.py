@@ -8,7 +8,8 @@ centroids (how far each triangle leaves the surface).
 import math
 import sys
 
-from pisurfaces import vtkPiImageTriangulator, vtkPiRayCaster, vtkPiSurface
+from pisurfaces import vtkPiImageTriangulator
+from triangulation_benchmark import distance, load_model, six_views
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
@@ -20,15 +21,8 @@ import vtkmodules.vtkRenderingFreeType  # noqa: F401
 
 def main():
     models, out = sys.argv[1], sys.argv[2]
-    surface = vtkPiSurface()
-    surface.LoadModel(models + "/cup_a1.0.pisurf")
-    b = [0.0] * 6
-    surface.GetModelBounds(b)
-    size = math.sqrt(sum((b[2 * a + 1] - b[2 * a]) ** 2 for a in range(3)))
-    caster = vtkPiRayCaster()
-    caster.SetPiSurface(surface)
-    caster.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
-    caster.SetResolution(128, 128)
+    surface, size = load_model(models, "cup_a1.0")
+    caster = six_views(surface, 128)
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(1200, 600)
@@ -48,10 +42,7 @@ def main():
         for c in range(mesh.GetNumberOfCells()):
             ids = mesh.GetCell(c).GetPointIds()
             q = [sum(mesh.GetPoint(ids.GetId(v))[a] for v in range(3)) / 3 for a in range(3)]
-            g = [0.0, 0.0, 0.0]
-            f = surface.EvaluateFunction(q)
-            surface.EvaluateGradient(q, g)
-            d = abs(f) / max(math.sqrt(sum(x * x for x in g)), 1e-300) / size
+            d = distance(surface, q) / size
             error.InsertNextValue(d)
             total += d * d
         mesh.GetCellData().SetScalars(error)

@@ -278,34 +278,6 @@ double Polynomial3::Evaluate(const double p[3]) const
   return v;
 }
 
-void Polynomial3::EvaluateMany(const double* p, int n, double* values) const
-{
-  if (this->Quadric || n > 8)
-  {
-    for (int k = 0; k < n; ++k)
-    {
-      values[k] = this->Evaluate(p + 3 * k);
-    }
-    return;
-  }
-  const int degree = std::max(this->Degree, 0);
-  double px[8][MaxDegree + 1], py[8][MaxDegree + 1], pz[8][MaxDegree + 1];
-  for (int k = 0; k < n; ++k)
-  {
-    Powers(p[3 * k], degree, px[k]);
-    Powers(p[3 * k + 1], degree, py[k]);
-    Powers(p[3 * k + 2], degree, pz[k]);
-    values[k] = 0.0;
-  }
-  for (const auto& t : this->Terms)
-  {
-    for (int k = 0; k < n; ++k)
-    {
-      values[k] += t.Coefficient * px[k][t.I] * py[k][t.J] * pz[k][t.K];
-    }
-  }
-}
-
 double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
 {
   if (this->Quadric)

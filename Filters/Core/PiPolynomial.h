@@ -64,9 +64,6 @@ public:
 
   /// Value at p. Cost: O(degree + terms).
   double Evaluate(const double p[3]) const;
-  /// Values at n <= 8 points (xyz interleaved) in one pass over the terms; each value
-  /// is bit-identical to Evaluate's (same operations in the same order).
-  void EvaluateMany(const double* p, int n, double* values) const;
   /// Value and gradient at p. Cost: O(degree + 3·terms).
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// At p and at the six points p ± step[a]·e_a, with the gradient at p, in one pass:

@@ -460,52 +460,6 @@ void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& ex
   FinishScaled(m, e, this->Blending, mantissa, exponent);
 }
 
-void ProductKernel::EvaluateScaledMany(
-  const double* p, int n, double* mantissa, long* exponent) const
-{
-  if (n > 8)
-  {
-    for (int k = 0; k < n; ++k)
-    {
-      this->EvaluateScaled(p + 3 * k, mantissa[k], exponent[k]);
-    }
-    return;
-  }
-  double m[8], v[8], q[24];
-  long e[8];
-  for (int k = 0; k < n; ++k)
-  {
-    m[k] = 1.0;
-    e[k] = 0;
-  }
-  for (const Factor& f : this->Factors)
-  {
-    if (f.IsPolynomial)
-    {
-      for (int k = 0; k < n; ++k)
-      {
-        f.Polynomial.ToLocal(p + 3 * k, q + 3 * k);
-      }
-      f.Polynomial.Poly.EvaluateMany(q, n, v);
-    }
-    else
-    {
-      for (int k = 0; k < n; ++k)
-      {
-        v[k] = f.Generic(p + 3 * k, nullptr);
-      }
-    }
-    for (int k = 0; k < n; ++k)
-    {
-      Accumulate(m[k], e[k], v[k]);
-    }
-  }
-  for (int k = 0; k < n; ++k)
-  {
-    FinishScaled(m[k], e[k], this->Blending, mantissa[k], exponent[k]);
-  }
-}
-
 void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double normal[3],
   double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
   long probeExponent[6]) const

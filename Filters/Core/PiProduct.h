@@ -88,15 +88,12 @@ public:
   /// pass over the factors, each factor's terms read once (PolynomialFactor::
   /// EvaluateStar): the attributes of a surface point and its singularity probes
   /// (RayCaster::IsSingular) for a third of the separate evaluations' work. The results
-  /// may differ from EvaluateVertex's and EvaluateScaledMany's in the last bits.
+  /// may differ from EvaluateVertex's and EvaluateScaled's in the last bits.
   void EvaluateVertexStar(const double p[3], double probe, double normal[3],
     double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
     long probeExponent[6]) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
-  /// The same at n <= 8 points (xyz interleaved), factor by factor: each result is
-  /// bit-identical to EvaluateScaled's at that point.
-  void EvaluateScaledMany(const double* p, int n, double* mantissa, long* exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.
   int EvaluateSignAndLog(const double p[3], double& logAbs) const;
 

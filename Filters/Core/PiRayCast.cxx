@@ -161,39 +161,9 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
 }
 
 // Whether |∇F|·probe is at most `tolerance` times the largest of the six probe values
-// |F| = |mantissa|·2^exponent (in logarithms: no overflow).
-static bool ProbesSayZeroGradient(
-  double logGradient, double probe, double tolerance, const double* mantissa, const long* exponent);
-
-bool RayCaster::IsSingular(
-  const double p[3], double logGradient, double probe, double tolerance) const
-{
-  // Compare |∇F|·h with the largest |F| at p ± h·e_i, in logarithms (no overflow). The
-  // largest |F| is found on the scaled values (exponent first, then mantissa: the same
-  // order as their logarithms), so only one logarithm is taken.
-  double q[18], mantissa[6];
-  long exponent[6];
-  for (int a = 0; a < 6; ++a)
-  {
-    q[3 * a] = p[0];
-    q[3 * a + 1] = p[1];
-    q[3 * a + 2] = p[2];
-    q[3 * a + a / 2] += (a % 2 ? probe : -probe);
-  }
-  this->Kernel.EvaluateScaledMany(q, 6, mantissa, exponent);
-  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
-}
-
-bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
-  double& gradientNorm, int& nearest) const
-{
-  double logGradient, mantissa[6];
-  long exponent[6];
-  this->Kernel.EvaluateVertexStar(
-    p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
-  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
-}
-
+// |F| = |mantissa|·2^exponent, compared in logarithms (no overflow). The largest |F| is
+// found on the scaled values (exponent first, then mantissa: the same order as their
+// logarithms), so only one logarithm is taken.
 static bool ProbesSayZeroGradient(
   double logGradient, double probe, double tolerance, const double* mantissa, const long* exponent)
 {
@@ -216,4 +186,15 @@ static bool ProbesSayZeroGradient(
     : std::log(bestMantissa) + static_cast<double>(bestExponent) * std::log(2.0);
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
+
+bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
+  double& gradientNorm, int& nearest) const
+{
+  double logGradient, mantissa[6];
+  long exponent[6];
+  this->Kernel.EvaluateVertexStar(
+    p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
+  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
+}
+
 }

@@ -31,15 +31,11 @@ public:
   void Cast(const double start[3], const double d[3], double length,
     const RayRootOptions& options, std::vector<RayRoot>& roots) const;
 
-  /// Whether the gradient vanishes at p on the scale `probe`: |∇F|·probe is at most
-  /// `tolerance` times the largest |F| at the six points p ± probe·e_i. `logGradient`
-  /// is log|∇F(p)|. Scale-free, so it holds for products whose |∇F| varies by orders of
-  /// magnitude over the surface.
-  bool IsSingular(const double p[3], double logGradient, double probe, double tolerance) const;
-
   /// The attributes of a surface point in one pass (ProductKernel::EvaluateVertexStar):
-  /// unit normal, |∇F|, nearest factor; returns whether it is singular by IsSingular's
-  /// test.
+  /// unit normal, |∇F|, nearest factor; returns whether it is singular, i.e. whether
+  /// the gradient vanishes at p on the scale `probe`: |∇F|·probe is at most `tolerance`
+  /// times the largest |F| at the six points p ± probe·e_i. Scale-free, so it holds for
+  /// products whose |∇F| varies by orders of magnitude over the surface.
   bool Attributes(const double p[3], double probe, double tolerance, double normal[3],
     double& gradientNorm, int& nearest) const;
 

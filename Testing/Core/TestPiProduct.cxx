@@ -1131,7 +1131,8 @@ static void StarProbes(const double p[3], double probe, double q[18])
 
 // The one-pass attributes of a surface point (EvaluateVertexStar): the normal, |∇F|,
 // the nearest factor and the six probe values agree with EvaluateVertex and
-// EvaluateScaledMany (rotated primitives, expressions and generic factors included).
+// EvaluateScaled at each probe (rotated primitives, expressions and generic factors
+// included).
 TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
 {
   Random rng(45);
@@ -1156,7 +1157,8 @@ TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
       k.EvaluateVertexStar(p.data(), probe, n2, g2, near2, log2, m2, e2);
       double q[18];
       StarProbes(p.data(), probe, q);
-      k.EvaluateScaledMany(q, 6, m1, e1);
+      for (int a = 0; a < 6; ++a)
+        k.EvaluateScaled(q + 3 * a, m1[a], e1[a]);
       const double cond = Conditioning(factors, p.data());
       const double tol = std::max(1e-12, 1e-14 * cond);
       EXPECT_NEAR(g2, g1, tol * std::fabs(g1)) << "trial " << trial;
@@ -1192,7 +1194,8 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
     k.EvaluateVertexStar(p, probe, n2, g2, near2, log2, m2, e2);
     double q[18];
     StarProbes(p, probe, q);
-    k.EvaluateScaledMany(q, 6, m1, e1);
+    for (int a = 0; a < 6; ++a)
+      k.EvaluateScaled(q + 3 * a, m1[a], e1[a]);
     EXPECT_NEAR(log2, log1, 1e-10 * std::fabs(log1));
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(n2[c], n1[c], 1e-10);
