@@ -12,6 +12,7 @@
 #define PiQtTestUtilities_h
 
 #include "pqObjectBuilder.h"
+#include "pqRenderView.h"
 #include "pqServer.h"
 #include "pqServerResource.h"
 #include "vtkSMNewWidgetRepresentationProxy.h"
@@ -54,6 +55,17 @@ inline pqServer* StartSession(pqObjectBuilder* builder, const std::string& plugi
     return nullptr;
   }
   return server;
+}
+
+// A render view on the session; null, with a message, if it cannot be made.
+inline pqRenderView* CreateRenderView(pqObjectBuilder* builder, pqServer* server)
+{
+  auto* view = qobject_cast<pqRenderView*>(builder->createView("RenderView", server));
+  if (!view)
+  {
+    std::cerr << "no render view\n";
+  }
+  return view;
 }
 
 template <class T>

@@ -105,10 +105,9 @@ int main(int argc, char* argv[])
   // A window with the properties panel on the left and a render view on the right.
   QWidget window;
   auto* layout = new QHBoxLayout(&window);
-  auto* view = qobject_cast<pqRenderView*>(builder->createView("RenderView", server));
+  pqRenderView* view = CreateRenderView(builder, server);
   if (!view)
   {
-    std::cerr << "no render view\n";
     return EXIT_FAILURE;
   }
   vtkSMProxy* viewProxy = view->getProxy();

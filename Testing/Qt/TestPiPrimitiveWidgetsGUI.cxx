@@ -83,10 +83,9 @@ int main(int argc, char* argv[])
   }
   QWidget window;
   auto* layout = new QHBoxLayout(&window);
-  auto* view = qobject_cast<pqRenderView*>(builder->createView("RenderView", server));
+  pqRenderView* view = CreateRenderView(builder, server);
   if (!view)
   {
-    std::cerr << "no render view\n";
     return EXIT_FAILURE;
   }
   vtkSMProxy* viewProxy = view->getProxy();
