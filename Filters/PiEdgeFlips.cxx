@@ -9,11 +9,32 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
 namespace
 {
+// An array left uninitialized when allocated (the passes that fill it run in
+// parallel, so its pages are first touched by the threads, not zeroed by one).
+template <typename T>
+class Buffer
+{
+public:
+  void Allocate(size_t n)
+  {
+    this->Data.reset(new T[n]);
+    this->Size = n;
+  }
+  bool Empty() const { return this->Size == 0; }
+  T& operator[](size_t k) { return this->Data[k]; }
+  const T& operator[](size_t k) const { return this->Data[k]; }
+
+private:
+  std::unique_ptr<T[]> Data;
+  size_t Size = 0;
+};
+
 // Half-edge h = 3·t + k of triangle t runs from its corner k to its corner k + 1.
 template <typename Id>
 class FlipMesh
@@ -205,9 +226,9 @@ private:
   Id T, N;
   const double* X;
   const float* Normal;
-  std::vector<Id> Opp;
-  std::vector<float> Gains;
-  std::vector<Id> RecH, RecO; // per triangle flipped this round: the flip's two half-edges
+  Buffer<Id> Opp;
+  Buffer<float> Gains;
+  Buffer<Id> RecH, RecO; // per triangle flipped this round: the flip's two half-edges
 };
 
 template <typename Id>
@@ -245,7 +266,15 @@ vtkIdType FlipMesh<Id>::Build()
   {
     start[k + 1] += start[k];
   }
-  std::vector<std::pair<Id, Id>> entries(h3); // (upper vertex, half-edge)
+  struct Entry // not initialized on allocation: the fill below writes every one
+  {
+    Id Upper, Half;
+    bool operator<(const Entry& o) const
+    {
+      return this->Upper < o.Upper || (this->Upper == o.Upper && this->Half < o.Half);
+    }
+  };
+  std::unique_ptr<Entry[]> entries(new Entry[h3]);
   vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
@@ -256,20 +285,26 @@ vtkIdType FlipMesh<Id>::Build()
         [&](Id low, Id high, Id h) { entries[fill[low - lo]++] = { high, h }; });
     }
   });
-  this->Opp.assign(h3, -1);
+  // Every half-edge is in one vertex's entries: its opposite (or −1) is written there.
+  this->Opp.Allocate(h3);
   std::atomic<vtkIdType> boundary{ 0 };
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
     vtkIdType count = 0;
     for (vtkIdType v = b; v < e; ++v)
     {
-      auto first = entries.begin() + start[v], last = entries.begin() + start[v + 1];
+      Entry* first = entries.get() + start[v];
+      Entry* last = entries.get() + start[v + 1];
       std::sort(first, last);
-      for (auto x = first; x != last;)
+      for (Entry* x = first; x != last;)
       {
-        auto y = x + 1;
-        while (y != last && y->first == x->first)
+        Entry* y = x + 1;
+        while (y != last && y->Upper == x->Upper)
         {
           ++y;
+        }
+        for (Entry* z = x; z != y; ++z)
+        {
+          this->Opp[z->Half] = -1;
         }
         if (y - x == 1)
         {
@@ -277,7 +312,7 @@ vtkIdType FlipMesh<Id>::Build()
         }
         else if (y - x == 2)
         {
-          const Id h1 = x->second, h2 = (x + 1)->second;
+          const Id h1 = x->Half, h2 = (x + 1)->Half;
           if (this->From(h1) == this->To(h2) && this->To(h1) == this->From(h2))
           {
             this->Opp[h1] = h2;
@@ -301,11 +336,15 @@ vtkIdType FlipMesh<Id>::Round()
   // round only the edges of the triangles flipped last round change (a gain depends on
   // the edge's two triangles only); an edge between two of them is computed by its
   // lower half-edge.
-  if (this->Gains.empty())
+  if (this->Gains.Empty())
   {
-    this->Gains.resize(h3);
-    this->RecH.assign(this->T, -1);
-    this->RecO.assign(this->T, -1);
+    this->Gains.Allocate(h3);
+    this->RecH.Allocate(this->T);
+    this->RecO.Allocate(this->T);
+    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
+      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
+    });
     vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
       for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
       {
@@ -344,8 +383,10 @@ vtkIdType FlipMesh<Id>::Round()
         }
       }
     });
-    std::fill(this->RecH.begin(), this->RecH.end(), Id(-1));
-    std::fill(this->RecO.begin(), this->RecO.end(), Id(-1));
+    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
+      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
+    });
   }
   lap("gains");
   // The flips: edges that are the best of both their triangles (so each triangle is in

@@ -644,14 +644,15 @@ void Triangulation::RunLattice(const Lattice& L)
     start[l + 1] = start[l] + (first[l + 1] - first[l]) + h;
     hiddenStart[l + 1] = hiddenStart[l] + h;
   }
-  std::vector<Sample> line(start[lines]);
+  // (not initialized on allocation: the threads below write every sample)
+  std::unique_ptr<Sample[]> line(new Sample[start[lines]]);
   const size_t base = this->Points.size();
   this->Points.resize(base + hiddenStart[lines]);
   vtkSMPTools::For(0, lines, [&](vtkIdType lb, vtkIdType le) {
     for (vtkIdType l = lb; l < le; ++l)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
-      Sample* out = line.data() + start[l];
+      Sample* out = line.get() + start[l];
       std::copy(samples.begin() + first[l], samples.begin() + first[l + 1], out);
       Sample* o = out + (first[l + 1] - first[l]);
       const vtkIdType k = l - L.LineStart[a];
@@ -689,8 +690,8 @@ void Triangulation::RunLattice(const Lattice& L)
 
   // The valid samples of line l with X in [x0, x1), and the first non-tangent one.
   auto firstCrossing = [&](vtkIdType l, double x0, double x1) -> const Sample* {
-    const Sample* b = line.data() + start[l];
-    const Sample* e = line.data() + start[l + 1];
+    const Sample* b = line.get() + start[l];
+    const Sample* e = line.get() + start[l + 1];
     const Sample* s = std::lower_bound(b, e, Sample{ x0, INT64_MIN, false });
     for (; s != e && s->X < x1; ++s)
     {
@@ -777,7 +778,7 @@ void Triangulation::RunLattice(const Lattice& L)
     }
     const unsigned char sign = faceSign[4] >= 0 ? faceSign[4] : nodeSign(i, j, 0);
     const vtkIdType l = L.Line(2, i, j);
-    for (const Sample* c = line.data() + start[l]; c != line.data() + start[l + 1]; ++c)
+    for (const Sample* c = line.get() + start[l]; c != line.get() + start[l + 1]; ++c)
     {
       const int level = flipLevel(c->X);
       if (c->Code != INT64_MIN && !c->Tangent && level < nz - 1)
@@ -1642,14 +1643,13 @@ int vtkPiImageTriangulator::RequestData(
       }
     }
   });
-  std::vector<vtkIdType> hitOut(C.N, -1);
+  // Large arrays below are allocated uninitialized when a pass writes all of them (a
+  // zeroing by one thread first would cost as much as the pass).
+  std::unique_ptr<vtkIdType[]> hitOut(new vtkIdType[C.N]);
   vtkIdType usedHits = 0;
   for (vtkIdType id = 0; id < C.N; ++id)
   {
-    if (hitUsed[id].load(std::memory_order_relaxed))
-    {
-      hitOut[id] = usedHits++;
-    }
+    hitOut[id] = hitUsed[id].load(std::memory_order_relaxed) ? usedHits++ : -1;
   }
   hitUsed.reset();
   const auto hiddenEnd = std::partition_point(T.Points.begin(), T.Points.end(),
@@ -1674,11 +1674,11 @@ int vtkPiImageTriangulator::RequestData(
                                      edgeKeys.begin());
   };
   const vtkIdType triangles = rowStart.back() / 3;
-  std::vector<vtkIdType> corner(rowStart.back());
+  std::unique_ptr<vtkIdType[]> corner(new vtkIdType[rowStart.back()]);
   vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType r = b; r < e; ++r)
     {
-      vtkIdType* out = corner.data() + rowStart[r];
+      vtkIdType* out = corner.get() + rowStart[r];
       for (std::int64_t key : T.Rows[r])
       {
         *out++ = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
@@ -1700,7 +1700,7 @@ int vtkPiImageTriangulator::RequestData(
   // it shares a triangle with a hit, or is joined to such a point by triangles of
   // computed points only (a union-find over the computed points alone).
   const vtkIdType computedCount = total - usedHits;
-  std::vector<vtkIdType> parent(computedCount);
+  std::unique_ptr<vtkIdType[]> parent(new vtkIdType[computedCount]);
   for (vtkIdType k = 0; k < computedCount; ++k)
   {
     parent[k] = k;
@@ -1715,7 +1715,7 @@ int vtkPiImageTriangulator::RequestData(
   std::vector<unsigned char> visible(computedCount, 0);
   for (vtkIdType t = 0; t < triangles; ++t)
   {
-    const vtkIdType* c = corner.data() + 3 * t;
+    const vtkIdType* c = corner.get() + 3 * t;
     if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
     {
       for (int k = 1; k < 3; ++k)
@@ -1745,7 +1745,9 @@ int vtkPiImageTriangulator::RequestData(
   // Output points in the order the triangles first use them (rows of the lattice), so
   // that neighbouring triangles have neighbouring points: every later pass (and the
   // user's filters) reads memory in order.
-  std::vector<vtkIdType> newId(total, -1), source; // source: the old id of each point
+  std::unique_ptr<vtkIdType[]> newId(new vtkIdType[total]);
+  vtkSMPTools::For(0, total, [&](vtkIdType b, vtkIdType e) { std::fill(&newId[b], &newId[b] + (e - b), -1); });
+  std::vector<vtkIdType> source; // the old id of each point
   source.reserve(total);
   vtkIdType n = 0;
   for (vtkIdType c = 0; c < 3 * triangles; ++c)
@@ -1757,7 +1759,7 @@ int vtkPiImageTriangulator::RequestData(
       source.push_back(k);
     }
   }
-  std::vector<vtkIdType> hitOfUsed(usedHits);
+  std::unique_ptr<vtkIdType[]> hitOfUsed(new vtkIdType[usedHits]);
   vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType id = b; id < e; ++id)
     {
@@ -1816,10 +1818,11 @@ int vtkPiImageTriangulator::RequestData(
   lap("vertices");
   // Triangles, oriented so that their normals agree with the exact gradient (outward);
   // degenerate ones (two corners on one hit) are dropped.
-  std::vector<unsigned char> keep(triangles, 0);
+  std::unique_ptr<unsigned char[]> keep(new unsigned char[triangles]);
   vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType t = b; t < e; ++t)
     {
+      keep[t] = 0;
       vtkIdType id[3];
       for (int c = 0; c < 3; ++c)
       {
@@ -1845,7 +1848,7 @@ int vtkPiImageTriangulator::RequestData(
       {
         std::swap(id[1], id[2]);
       }
-      std::copy(id, id + 3, corner.begin() + 3 * t);
+      std::copy(id, id + 3, corner.get() + 3 * t);
       keep[t] = 1;
     }
   });
@@ -1857,7 +1860,7 @@ int vtkPiImageTriangulator::RequestData(
     for (vtkIdType k = b; k < e; ++k)
     {
       const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
-      blockStart[k + 1] = std::count(keep.begin() + k * blockSize, keep.begin() + t1, 1);
+      blockStart[k + 1] = std::count(keep.get() + k * blockSize, keep.get() + t1, 1);
     }
   });
   for (vtkIdType k = 0; k < blocks; ++k)
@@ -1879,7 +1882,7 @@ int vtkPiImageTriangulator::RequestData(
       {
         if (keep[t])
         {
-          std::copy(corner.begin() + 3 * t, corner.begin() + 3 * t + 3, cellIds + 3 * out);
+          std::copy(corner.get() + 3 * t, corner.get() + 3 * t + 3, cellIds + 3 * out);
           offsetIds[out] = 3 * out;
           ++out;
         }
@@ -1887,7 +1890,7 @@ int vtkPiImageTriangulator::RequestData(
     }
   });
   offsetIds[kept] = 3 * kept;
-  std::vector<vtkIdType>().swap(corner);
+  corner.reset();
   vtkNew<vtkCellArray> polys;
   polys->SetData(offsets, cells);
 
