@@ -564,13 +564,17 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     {
       w.Scaled.push_back(coefficients[offset + k] * scale);
     }
-    std::fill(next, next + current + d + 1, 0.0);
-    for (int a = 0; a <= current; ++a)
+    // (each coefficient summed in a register, in the order of increasing a as before:
+    // accumulating into next[a + b] in memory makes every step wait for the store of
+    // the one before)
+    for (int k = 0; k <= current + d; ++k)
     {
-      for (int b = 0; b <= d; ++b)
+      double sum = 0.0;
+      for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
       {
-        next[a + b] += product[a] * bern[b];
+        sum += product[k - b] * bern[b];
       }
+      next[k] = sum;
     }
     current += d;
     std::copy(next, next + current + 1, product);
