@@ -6,9 +6,13 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkTestErrorObserver.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -36,6 +40,29 @@
 
 namespace pitest
 {
+/// The path of a model of Testing/Data/Models ("cup_a1.0" or "cup_a1.0.pisurf").
+inline std::string ModelPath(const std::string& name)
+{
+  const std::string suffix = ".pisurf";
+  const bool hasSuffix = name.size() >= suffix.size() &&
+    name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return std::string(PISURF_MODELS_DIR) + "/" + name + (hasSuffix ? "" : suffix);
+}
+
+/// Compares the window with the test's baseline (-V, -T options in argv; -I shows it
+/// interactively) and returns the test's exit code.
+inline int RegressionResult(int argc, char* argv[], vtkRenderWindow* window)
+{
+  const int result = vtkRegressionTestImage(window);
+  if (result == vtkRegressionTester::DO_INTERACTOR)
+  {
+    vtkNew<vtkRenderWindowInteractor> interactor;
+    interactor->SetRenderWindow(window);
+    interactor->Start();
+  }
+  return result == vtkRegressionTester::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+}
+
 /// Watches an object's errors and warnings (so expected errors do not reach the
 /// output window) and lets a test assert on their text.
 struct Watch

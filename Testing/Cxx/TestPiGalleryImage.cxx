@@ -4,6 +4,7 @@
 // Pi-surface (or the opaque Pi-surface under translucent primitives where it lies
 // inside them). Arguments: model dx dy dz ux uy uz inside, then the regression-test
 // options (-V baseline -T temporary directory).
+#include "PiTestUtilities.h"
 #include "vtkPiSurface.h"
 #include "vtkPiSurfaceModelReader.h"
 
@@ -14,9 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
-#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 
 #include <cstdlib>
@@ -40,7 +39,7 @@ int TestPiGalleryImage(int argc, char* argv[])
   const bool inside = std::atoi(argv[8]) != 0;
 
   vtkNew<vtkPiSurfaceModelReader> reader;
-  reader->SetFileName((std::string(PISURF_MODELS_DIR) + "/" + model + ".pisurf").c_str());
+  reader->SetFileName(pitest::ModelPath(model).c_str());
   reader->SetResolution(96);
   reader->Update();
   vtkPiSurface* surface = reader->GetPiSurface();
@@ -104,12 +103,5 @@ int TestPiGalleryImage(int argc, char* argv[])
   camera->Zoom(1.15);
   window->Render();
 
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    vtkNew<vtkRenderWindowInteractor> interactor;
-    interactor->SetRenderWindow(window);
-    interactor->Start();
-  }
-  return result == vtkRegressionTester::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+  return pitest::RegressionResult(argc, argv, window);
 }

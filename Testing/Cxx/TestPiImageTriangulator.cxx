@@ -105,7 +105,6 @@ vtkIdType Field(vtkPolyData* mesh, const char* name)
 int TestPiImageTriangulator(int, char*[])
 {
   int failures = 0;
-  const std::string models = PISURF_MODELS_DIR;
 
   // Closed smooth models, six axis views (first hits): closed 2-manifolds, one
   // component, the Euler characteristic of the flying-edges mesh of the same model
@@ -120,7 +119,7 @@ int TestPiImageTriangulator(int, char*[])
          Case{ "eggplant_r0.25", 2 }, Case{ "table", 2 } })
   {
     vtkNew<vtkPiSurface> surface;
-    PI_CHECK(surface->LoadModel((models + "/" + c.Model + ".pisurf").c_str()));
+    PI_CHECK(surface->LoadModel(pitest::ModelPath(c.Model).c_str()));
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(surface);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
@@ -197,7 +196,7 @@ int TestPiImageTriangulator(int, char*[])
   for (const char* model : { "formic_acid", "cup_a1.0" })
   {
     vtkNew<vtkPiSurface> surface;
-    surface->LoadModel((models + "/" + model + ".pisurf").c_str());
+    surface->LoadModel(pitest::ModelPath(model).c_str());
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(surface);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
@@ -218,7 +217,7 @@ int TestPiImageTriangulator(int, char*[])
   // along the three axes do, and mesh them as components of their own.
   {
     vtkNew<vtkPiSurface> surface;
-    surface->LoadModel((models + "/formic_acid.pisurf").c_str());
+    surface->LoadModel(pitest::ModelPath("formic_acid").c_str());
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(surface);
     caster->SetViewMode(vtkPiRayCaster::THREE_AXIS_DIRECTIONS);
@@ -266,7 +265,7 @@ int TestPiImageTriangulator(int, char*[])
   // at this resolution (a documented limit: their hits count in UnusedHits).
   {
     vtkNew<vtkPiSurface> surface;
-    surface->LoadModel((models + "/crossed_cylinders_r0.001.pisurf").c_str());
+    surface->LoadModel(pitest::ModelPath("crossed_cylinders_r0.001").c_str());
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(surface);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
@@ -344,7 +343,7 @@ int TestPiImageTriangulator(int, char*[])
   // |F|/|∇F| at the centroids).
   {
     vtkNew<vtkPiSurface> surface;
-    PI_CHECK(surface->LoadModel((models + "/cup_a1.0.pisurf").c_str()));
+    PI_CHECK(surface->LoadModel(pitest::ModelPath("cup_a1.0").c_str()));
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(surface);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);

@@ -32,7 +32,7 @@ int Components(vtkPolyData* mesh)
 
 std::string Model(const char* name)
 {
-  return std::string(PISURF_MODELS_DIR) + "/" + name + ".pisurf";
+  return pitest::ModelPath(name);
 }
 
 std::string TwoSpheres(double d, double r)

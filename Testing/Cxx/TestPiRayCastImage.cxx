@@ -2,6 +2,7 @@
 // Regression image of the ray caster's shaded first hits (output port 1), the paper's
 // "immediate visualization". Arguments: model px py pz fx fy fz ux uy uz, then the
 // regression-test options (-V baseline -T temporary directory).
+#include "PiTestUtilities.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"
 
@@ -24,7 +25,7 @@ int TestPiRayCastImage(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   vtkNew<vtkPiSurface> surface;
-  if (!surface->LoadModel((std::string(PISURF_MODELS_DIR) + "/" + argv[1] + ".pisurf").c_str()))
+  if (!surface->LoadModel(pitest::ModelPath(argv[1]).c_str()))
   {
     return EXIT_FAILURE;
   }

@@ -192,7 +192,7 @@ int TestPiRayCaster(int, char*[])
     }
     ++models;
     vtkNew<vtkPiSurface> model;
-    PI_CHECK(model->LoadModel((std::string(PISURF_MODELS_DIR) + "/" + file).c_str()));
+    PI_CHECK(model->LoadModel(pitest::ModelPath(file).c_str()));
     vtkNew<vtkPiRayCaster> views;
     views->SetPiSurface(model);
     views->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);

@@ -157,7 +157,7 @@ int Compare(const std::string& what, const Run& run)
 vtkSmartPointer<vtkPiSurface> Model(const char* name)
 {
   auto surface = vtkSmartPointer<vtkPiSurface>::New();
-  surface->LoadModel((std::string(PISURF_MODELS_DIR) + "/" + name).c_str());
+  surface->LoadModel(pitest::ModelPath(name).c_str());
   return surface;
 }
 }

@@ -4,6 +4,7 @@
 // with its edges so that the mesh itself (exact hits as vertices) is what is compared.
 // Arguments: model dx dy dz ux uy uz (view direction, towards the model, and view up),
 // then the regression-test options (-V baseline -T temporary directory).
+#include "PiTestUtilities.h"
 #include "vtkPiImageTriangulator.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"
@@ -14,9 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
-#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 
 #include <cstdlib>
@@ -31,7 +30,7 @@ int TestPiTriangulationImage(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   vtkNew<vtkPiSurface> surface;
-  if (!surface->LoadModel((std::string(PISURF_MODELS_DIR) + "/" + argv[1] + ".pisurf").c_str()))
+  if (!surface->LoadModel(pitest::ModelPath(argv[1]).c_str()))
   {
     return EXIT_FAILURE;
   }
@@ -79,12 +78,5 @@ int TestPiTriangulationImage(int argc, char* argv[])
   camera->Zoom(1.15);
   window->Render();
 
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    vtkNew<vtkRenderWindowInteractor> interactor;
-    interactor->SetRenderWindow(window);
-    interactor->Start();
-  }
-  return result == vtkRegressionTester::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+  return pitest::RegressionResult(argc, argv, window);
 }
