@@ -4,7 +4,7 @@
         default 512; models default cup_a1.0,formic_acid)
 
 On the six axis views (first hits, N x N each) of the cup and formic acid, with the
-STDThread backend (our meshes and flying edges: the median of three runs):
+STDThread backend (our meshes and flying edges: the median of five runs):
   ours      vtkPiImageTriangulator on the whole cloud (ray lattice, closed mesh), with
             its default EdgeFlipRounds 1 and with 0 (no flips, polygons fanned)
   delaunay  vtkDelaunay2D on each view's hits (projected on the view's image plane),
@@ -75,7 +75,7 @@ def accuracy(surface, mesh, size, samples=4000):
     return max(d), rms(d), rms(c)
 
 
-def median_time(algorithm, runs=3):
+def median_time(algorithm, runs=5):
     """The median wall time of `runs` executions (the 2-core machine's timings vary by
     tens of percent from one run to the next; vtkDelaunay2D, 40 s a view set, runs once)."""
     times = []
