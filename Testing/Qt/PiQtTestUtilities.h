@@ -3,7 +3,8 @@
  * @file PiQtTestUtilities.h
  * @brief what the QTest ParaView clients of Testing/Qt share
  *
- * A failure counter with its CHECK macro, a builtin session with the plugin loaded,
+ * A failure counter with its CHECK macro, the Qt and ParaView applications, a builtin
+ * session with the plugin loaded,
  * widgets found by object name, typing into a field, the Pi Surface's Model text, near
  * comparisons, and ParaView's interactive widgets found in a view.
  * Each test is its own program: everything here is per translation unit.
@@ -11,6 +12,7 @@
 #ifndef PiQtTestUtilities_h
 #define PiQtTestUtilities_h
 
+#include "pqApplicationCore.h"
 #include "pqObjectBuilder.h"
 #include "pqRenderView.h"
 #include "pqServer.h"
@@ -21,6 +23,7 @@
 #include "vtkSMProxy.h"
 #include "vtkSMProxyManager.h"
 
+#include <QApplication>
 #include <QCoreApplication>
 #include <QLineEdit>
 #include <QTest>
@@ -43,6 +46,24 @@ int Failures = 0;
       ++Failures;                                                                              \
     }                                                                                          \
   } while (false)
+
+// The Qt application and ParaView's application core (Core: pqApplicationCore or a
+// subclass), given the program name only (they want argv[argc] == nullptr, and the
+// test's own arguments are not theirs).
+template <class Core = pqApplicationCore>
+struct TestApplication
+{
+  int Argc = 1;
+  char* Argv[2];
+  QApplication App;
+  Core Application;
+  explicit TestApplication(char* program)
+    : Argv{ program, nullptr }
+    , App(Argc, Argv)
+    , Application(Argc, Argv)
+  {
+  }
+};
 
 // A builtin session with the plugin (its .so) loaded; null, with a message, if either fails.
 inline pqServer* StartSession(pqObjectBuilder* builder, const std::string& plugin)

@@ -25,7 +25,6 @@
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
 
-#include <QApplication>
 
 #include <cstdlib>
 #include <iostream>
@@ -65,10 +64,8 @@ int main(int argc, char* argv[])
   }
   const std::string plugin = argv[1];
   const std::string state = std::string(argv[2]) + "/TestPiDisplayGUI.pvsm";
-  int qtArgc = 1;
-  char* qtArgv[] = { argv[0], nullptr };
-  QApplication app(qtArgc, qtArgv);
-  pqApplicationCore core(qtArgc, qtArgv);
+  TestApplication<> application(argv[0]);
+  pqApplicationCore& core = application.Application;
   pqObjectBuilder* builder = core.getObjectBuilder();
   pqServer* server = StartSession(builder, plugin);
   if (!server)

@@ -37,7 +37,6 @@
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
 
-#include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -91,10 +90,8 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   const std::string plugin = argv[1];
-  int qtArgc = 1;
-  char* qtArgv[] = { argv[0], nullptr };
-  QApplication app(qtArgc, qtArgv);
-  pqApplicationCore core(qtArgc, qtArgv);
+  TestApplication<> application(argv[0]);
+  pqApplicationCore& core = application.Application;
   pqObjectBuilder* builder = core.getObjectBuilder();
   pqServer* server = StartSession(builder, plugin);
   if (!server)

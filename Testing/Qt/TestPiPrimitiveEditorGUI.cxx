@@ -25,7 +25,6 @@
 #include "vtkSMProxyManager.h"
 #include "vtkSMSourceProxy.h"
 
-#include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QLabel>
@@ -85,11 +84,8 @@ int main(int argc, char* argv[])
   }
   // argv[2], optional: a folder for a picture of the editor.
   const std::string plugin = argv[1];
-  // Qt and ParaView see the program name only (and want argv[argc] == nullptr).
-  int qtArgc = 1;
-  char* qtArgv[] = { argv[0], nullptr };
-  QApplication app(qtArgc, qtArgv);
-  pqApplicationCore core(qtArgc, qtArgv);
+  TestApplication<> application(argv[0]);
+  pqApplicationCore& core = application.Application;
   vtkNew<WarningRecorder> recorder;
   vtkOutputWindow::SetInstance(recorder);
 

@@ -29,7 +29,6 @@
 #include "vtkSMViewProxy.h"
 #include "vtkStringArray.h"
 
-#include <QApplication>
 #include <QHBoxLayout>
 
 #include <array>
@@ -68,10 +67,9 @@ int main(int argc, char* argv[])
     std::cerr << "usage: TestPiPrimitiveWidgetsGUI <PiSurfaces plugin .so> [picture folder]\n";
     return EXIT_FAILURE;
   }
-  int qtArgc = 1;
-  char* qtArgv[] = { argv[0], nullptr };
-  QApplication app(qtArgc, qtArgv);
-  pqPVApplicationCore core(qtArgc, qtArgv); // the handle widget needs its selection manager
+  // (pqPVApplicationCore: the handle widget needs its selection manager)
+  TestApplication<pqPVApplicationCore> application(argv[0]);
+  pqPVApplicationCore& core = application.Application;
   // ParaView's own property widgets (the interactive box, cylinder and plane) and
   // decorators, as the ParaView client registers them.
   core.interfaceTracker()->addInterface(new pqStandardPropertyWidgetInterface(&core));
