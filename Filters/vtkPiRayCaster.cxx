@@ -187,8 +187,16 @@ struct CastRows
   std::atomic<bool>* Abort;
   int RowBegin, RowEnd; // the image rows [RowBegin, RowEnd) of every view
 
+  // Work buffers of one thread's chunk of rows (locals of operator(), not thread_local:
+  // a thread_local costs a call to find it at every ray).
+  struct Buffers
+  {
+    std::vector<pisurf::RayRoot> Roots;
+    std::vector<double> Coefficients, Row;
+  };
+
   void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out,
-    const pisurf::RayGrid* grid = nullptr, const std::vector<double>* row = nullptr) const
+    Buffers& buffers, const pisurf::RayGrid* grid = nullptr) const
   {
     double o[3], d[3];
     double t0 = 0, t1 = v.Length;
@@ -210,7 +218,7 @@ struct CastRows
     {
       return;
     }
-    thread_local std::vector<pisurf::RayRoot> roots;
+    std::vector<pisurf::RayRoot>& roots = buffers.Roots;
     pisurf::RayRootOptions options;
     options.Tolerance = this->Tolerance;
     options.AllRoots = this->AllHits;
@@ -230,9 +238,9 @@ struct CastRows
       }
       // Orthographic: the factors restricted from the row's coefficients, in the grid's
       // parameter s = t − h (t from the view plane).
-      thread_local std::vector<double> coefficients;
+      std::vector<double>& coefficients = buffers.Coefficients;
       coefficients.resize(this->Caster->GetLineCoefficientCount());
-      grid->Restrict(*row, i, coefficients.data());
+      grid->Restrict(buffers.Row, i, coefficients.data());
       const double h = grid->GetHalfLength();
       this->Caster->CastRestricted(coefficients.data(), t0 - h, t1 - h, options, roots);
       int index = 0;
@@ -266,6 +274,7 @@ struct CastRows
   void operator()(vtkIdType begin, vtkIdType end)
   {
     const bool single = vtkSMPTools::GetSingleThread();
+    Buffers buffers;
     for (vtkIdType row = begin; row < end; ++row)
     {
       if (single && this->Algorithm->CheckAbort())
@@ -283,14 +292,13 @@ struct CastRows
       const View& v = (*this->Views)[vi];
       std::vector<Hit>& out = (*this->Rows)[row];
       const pisurf::RayGrid* grid = (*this->Grids)[vi].get();
-      thread_local std::vector<double> rowCoefficients;
       if (grid)
       {
-        grid->SetRow(static_cast<int>(r), rowCoefficients);
+        grid->SetRow(static_cast<int>(r), buffers.Row);
       }
       for (int i = 0; i < v.W; ++i)
       {
-        this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out, grid, &rowCoefficients);
+        this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out, buffers, grid);
       }
     }
   }

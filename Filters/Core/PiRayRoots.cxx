@@ -493,10 +493,11 @@ struct FastWorkspace
 bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r,
   double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
 {
-  int degree = 0;
+  int degree = 0, total = 0;
   for (int i = 0; i < factors; ++i)
   {
     degree += counts[i] - 1;
+    total += counts[i];
   }
   if (degree > FastDegree || factors == 0)
   {
@@ -505,18 +506,24 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   thread_local FastWorkspace w;
   const int n = degree + 1;
   // The product in scaled (binomially weighted) Bernstein form, factor by factor.
-  double product[FastDegree + 1], next[FastDegree + 1], bern[MaxDegree + 1], q[MaxDegree + 1];
+  // (the product and the next one alternate between two buffers)
+  double buffers[2][FastDegree + 1], bern[MaxDegree + 1], q[MaxDegree + 1];
+  double* product = buffers[0];
+  double* next = buffers[1];
   product[0] = 1.0;
   int current = 0; // degree of the product so far
   long exponent = 0;
-  w.Scaled.resize(0);
+  w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
     const int count = counts[i], d = count - 1;
     // Taylor shift to t0 and scaling to [0, 1] (as ToBernstein), then the weighted
     // Bernstein coefficients C(d, k)·b_k = Σ_{j<=k} C(d − j, k − j)·q_j directly: no
     // divisions.
-    std::copy(coefficients + offset, coefficients + offset + count, q);
+    for (int k = 0; k < count; ++k)
+    {
+      q[k] = coefficients[offset + k];
+    }
     for (int a = 0; a < d; ++a)
     {
       for (int k = d - 1; k >= a; --k)
@@ -562,7 +569,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     for (int k = 0; k < count; ++k)
     {
-      w.Scaled.push_back(coefficients[offset + k] * scale);
+      w.Scaled[offset + k] = coefficients[offset + k] * scale;
     }
     // (each coefficient summed in a register, in the order of increasing a as before:
     // accumulating into next[a + b] in memory makes every step wait for the store of
@@ -577,7 +584,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       next[k] = sum;
     }
     current += d;
-    std::copy(next, next + current + 1, product);
+    std::swap(product, next);
   }
   double rs = 0.0;
   if (r != 0.0)
