@@ -210,6 +210,15 @@ private:
     return true;
   }
 
+  // No triangle flipped (RecH, RecO all −1), in parallel.
+  void ClearRecords()
+  {
+    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
+      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
+      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
+    });
+  }
+
   // Where half-edge q of a flipped triangle is after the round's flips (q is not the
   // flipped edge itself: that one is only its own partner's partner).
   Id Moved(Id q) const
@@ -341,10 +350,7 @@ vtkIdType FlipMesh<Id>::Round()
     this->Gains.Allocate(h3);
     this->RecH.Allocate(this->T);
     this->RecO.Allocate(this->T);
-    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
-      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
-    });
+    this->ClearRecords();
     vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
       for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
       {
@@ -383,10 +389,7 @@ vtkIdType FlipMesh<Id>::Round()
         }
       }
     });
-    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
-      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
-    });
+    this->ClearRecords();
   }
   lap("gains");
   // The flips: edges that are the best of both their triangles (so each triangle is in
