@@ -4,7 +4,9 @@
         default 512; models default cup_a1.0,formic_acid)
 
 On the six axis views (first hits, N x N each) of the cup and formic acid, with the
-STDThread backend (our meshes and flying edges: the median of five runs):
+STDThread backend (our meshes: the median of six runs, three just before vtkDelaunay2D and
+three just after it, so that they sample the same stretch of the shared host's speed as
+its 40 s; flying edges: the median of five runs):
   ours      vtkPiImageTriangulator on the whole cloud (ray lattice, closed mesh), with
             its default EdgeFlipRounds 1 and with 0 (no flips, polygons fanned)
   delaunay  vtkDelaunay2D on each view's hits (projected on the view's image plane),
@@ -23,6 +25,7 @@ relative to the model size.
 """
 import math
 import random
+import statistics
 import sys
 import time
 
@@ -75,16 +78,21 @@ def accuracy(surface, mesh, size, samples=4000):
     return max(d), rms(d), rms(c)
 
 
-def median_time(algorithm, runs=5):
-    """The median wall time of `runs` executions (the 2-core machine's timings vary by
-    tens of percent from one run to the next; vtkDelaunay2D, 40 s a view set, runs once)."""
+def run_times(algorithm, runs):
+    """The wall times of `runs` executions (the 2-core machine's timings vary by tens of
+    percent from one run to the next; vtkDelaunay2D, 40 s a view set, runs once)."""
     times = []
     for _ in range(runs):
         algorithm.Modified()
         t = time.perf_counter()
         algorithm.Update()
         times.append(time.perf_counter() - t)
-    return sorted(times)[len(times) // 2]
+    return times
+
+
+def median_time(algorithm, runs=5):
+    """The median wall time of `runs` executions."""
+    return statistics.median(run_times(algorithm, runs))
 
 
 def surface_points(surface, count=4000, resolution=701):
@@ -189,13 +197,13 @@ def main():
 
         tri = vtkPiImageTriangulator()
         tri.SetInputData(cloud)
-        ours = median_time(tri)
+        ours_times = run_times(tri, 3)
         mesh = tri.GetOutput()
         # The same without edge flips (polygons fanned as marching cubes does).
         fast = vtkPiImageTriangulator()
         fast.SetInputData(cloud)
         fast.SetEdgeFlipRounds(0)
-        unflipped = median_time(fast)
+        unflipped_times = run_times(fast, 3)
 
         # vtkDelaunay2D per view: each view's hits, in the view's (u, v) image plane.
         t = time.perf_counter()
@@ -218,6 +226,9 @@ def main():
             d2.Update()
             delaunay_triangles += d2.GetOutput().GetNumberOfCells()
         delaunay = time.perf_counter() - t
+        # Ours again, just after: the medians of the six runs around vtkDelaunay2D.
+        ours = statistics.median(ours_times + run_times(tri, 3))
+        unflipped = statistics.median(unflipped_times + run_times(fast, 3))
 
         # Flying edges at about our vertex count.
         fe = vtkPiFlyingEdges()
