@@ -1747,8 +1747,6 @@ int vtkPiImageTriangulator::RequestData(
   // user's filters) reads memory in order.
   std::unique_ptr<vtkIdType[]> newId(new vtkIdType[total]);
   vtkSMPTools::For(0, total, [&](vtkIdType b, vtkIdType e) { std::fill(&newId[b], &newId[b] + (e - b), -1); });
-  std::vector<vtkIdType> source; // the old id of each point
-  source.reserve(total);
   vtkIdType n = 0;
   for (vtkIdType c = 0; c < 3 * triangles; ++c)
   {
@@ -1756,19 +1754,8 @@ int vtkPiImageTriangulator::RequestData(
     if (newId[k] < 0 && (k < usedHits || visible[find(k - usedHits)]))
     {
       newId[k] = n++;
-      source.push_back(k);
     }
   }
-  std::unique_ptr<vtkIdType[]> hitOfUsed(new vtkIdType[usedHits]);
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
-    {
-      if (hitOut[id] >= 0)
-      {
-        hitOfUsed[hitOut[id]] = id;
-      }
-    }
-  });
 
   lap("components");
   // The vertices: input hits copy their attributes, computed points take them from
@@ -1791,27 +1778,46 @@ int vtkPiImageTriangulator::RequestData(
   outFactor->SetNumberOfTuples(n);
   auto* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = outNormals->GetPointer(0);
-  // In output order (written in sequence): hits copy, computed points evaluate.
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  // In input order (read in sequence, written where each point goes: scattered writes
+  // cost less than scattered reads): hits copy, computed points evaluate.
+  int* viewOut = outView->GetPointer(0);
+  int* factorOut = outFactor->GetPointer(0);
+  unsigned char* singularOut = outSingular->GetPointer(0);
+  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
     {
-      const vtkIdType old = source[k];
-      if (old < usedHits)
+      const vtkIdType k = hitOut[id] < 0 ? -1 : newId[hitOut[id]];
+      if (k < 0)
       {
-        const vtkIdType id = hitOfUsed[old];
-        std::copy(C.P.data() + 3 * id, C.P.data() + 3 * id + 3, xyz + 3 * k);
-        std::copy(C.Normal.data() + 3 * id, C.Normal.data() + 3 * id + 3, nrmOut + 3 * k);
-        outSingular->SetValue(k, C.Singular[id]);
-        outView->SetValue(k, C.ViewOf[id]);
-        outFactor->SetValue(k, C.Factor[id]);
         continue;
       }
-      const Computed& c = T.Points[old - usedHits];
-      std::copy(c.P, c.P + 3, xyz + 3 * k);
-      std::copy(c.N, c.N + 3, nrmOut + 3 * k);
-      outView->SetValue(k, c.View);
-      outSingular->SetValue(k, c.Singular ? 1 : 0);
-      outFactor->SetValue(k, c.Nearest);
+      for (int a = 0; a < 3; ++a)
+      {
+        xyz[3 * k + a] = C.P[3 * id + a];
+        nrmOut[3 * k + a] = C.Normal[3 * id + a];
+      }
+      singularOut[k] = C.Singular[id];
+      viewOut[k] = C.ViewOf[id];
+      factorOut[k] = C.Factor[id];
+    }
+  });
+  vtkSMPTools::For(0, computedCount, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType q = b; q < e; ++q)
+    {
+      const vtkIdType k = newId[usedHits + q];
+      if (k < 0)
+      {
+        continue;
+      }
+      const Computed& c = T.Points[q];
+      for (int a = 0; a < 3; ++a)
+      {
+        xyz[3 * k + a] = c.P[a];
+        nrmOut[3 * k + a] = c.N[a];
+      }
+      viewOut[k] = c.View;
+      singularOut[k] = c.Singular ? 1 : 0;
+      factorOut[k] = c.Nearest;
     }
   });
 
