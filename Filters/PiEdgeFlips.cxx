@@ -61,28 +61,11 @@ public:
   vtkIdType Round();
 
 private:
-  // |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q.
   double Bend(Id p, Id q) const
   {
-    double s = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-      s += (double(this->Normal[3 * p + k]) - this->Normal[3 * q + k]) *
-        (this->X[3 * q + k] - this->X[3 * p + k]);
-    }
-    return std::fabs(s);
+    return PiBend(this->X + 3 * p, this->Normal + 3 * p, this->X + 3 * q, this->Normal + 3 * q);
   }
-  // (b − a)×(c − a)·w
-  double Facing(Id a, Id b, Id c, const double w[3]) const
-  {
-    const double* pa = this->X + 3 * a;
-    const double* pb = this->X + 3 * b;
-    const double* pc = this->X + 3 * c;
-    const double u[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
-    const double v[3] = { pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
-    return (u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1] +
-      (u[0] * v[1] - u[1] * v[0]) * w[2];
-  }
+  // (b − a)×(c − a)
   void Cross(Id a, Id b, Id c, double out[3]) const
   {
     const double* pa = this->X + 3 * a;
@@ -93,6 +76,13 @@ private:
     out[0] = u[1] * v[2] - u[2] * v[1];
     out[1] = u[2] * v[0] - u[0] * v[2];
     out[2] = u[0] * v[1] - u[1] * v[0];
+  }
+  // (b − a)×(c − a)·w
+  double Facing(Id a, Id b, Id c, const double w[3]) const
+  {
+    double n[3];
+    this->Cross(a, b, c, n);
+    return n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
   }
   void NormalSum(Id a, Id b, Id c, double out[3]) const
   {

@@ -26,6 +26,21 @@
 
 #include "vtkType.h"
 
+#include <cmath>
+
+/// |(n_p − n_q)·(q − p)| for points p, q with unit normals np, nq: about 8 times the
+/// surface's deviation from the chord p–q (see above). The measure of the triangulator's
+/// choice of diagonals and of the flips.
+inline double PiBend(const double* p, const float* np, const double* q, const float* nq)
+{
+  double s = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    s += (double(np[k]) - nq[k]) * (q[k] - p[k]);
+  }
+  return std::fabs(s);
+}
+
 struct PiEdgeFlipResult
 {
   vtkIdType BoundaryEdges = 0; ///< edges used by one triangle

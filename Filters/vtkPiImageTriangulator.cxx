@@ -159,18 +159,6 @@ struct Computed
   bool Singular;
 };
 
-// |(n_p − n_q)·(q − p)|: about 8 times the surface's deviation from the chord p–q (the
-// normal turns by κ·L along a chord of length L, the sagitta is κ·L²/8).
-double Bend(const double* p, const float* np, const double* q, const float* nq)
-{
-  double s = 0;
-  for (int k = 0; k < 3; ++k)
-  {
-    s += (double(np[k]) - nq[k]) * (q[k] - p[k]);
-  }
-  return std::fabs(s);
-}
-
 // The marching-cubes polygons of each case: the triangles of vtkMarchingCubesTriangleCases
 // grouped by shared diagonals, each group's outline as a cycle of cell edges. A case's
 // triangles that do not form a disk stay triangles.
@@ -345,7 +333,7 @@ struct Triangulation
   std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
   std::vector<Computed> Points;        // computed points, by key
   std::atomic<bool> Abort{ false };
-  bool ChooseDiagonals = true; // split lattice polygons by Bend (else fan them)
+  bool ChooseDiagonals = true; // split lattice polygons by PiBend (else fan them)
   double Probe = 0, SingularTolerance = 0.1; // the singular test of computed points
 
   bool Aborted()
@@ -917,7 +905,7 @@ void Triangulation::RunLattice(const Lattice& L)
           return;
         }
         // Each polygon of the case (one per sheet through the cell) is triangulated
-        // along the diagonals the surface bends least along (the least total Bend,
+        // along the diagonals the surface bends least along (the least total PiBend,
         // dynamic programming over the polygon's triangulations; ties: the first).
         for (const std::vector<int>& polygon : polygons[index])
         {
@@ -949,7 +937,7 @@ void Triangulation::RunLattice(const Lattice& L)
           if (size == 4)
           {
             // (the common case: the shorter bend of the two diagonals)
-            const int d = Bend(v[0].P, v[0].N, v[2].P, v[2].N) <= Bend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
+            const int d = PiBend(v[0].P, v[0].N, v[2].P, v[2].N) <= PiBend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
             for (int t = 0; t < 2; ++t)
             {
               tris.push_back(v[d].Key);
@@ -961,7 +949,7 @@ void Triangulation::RunLattice(const Lattice& L)
           double cost[12][12];
           int split[12][12];
           auto bend = [&](int a, int b) {
-            return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : Bend(v[a].P, v[a].N, v[b].P, v[b].N);
+            return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : PiBend(v[a].P, v[a].N, v[b].P, v[b].N);
           };
           for (int k = 0; k + 1 < size; ++k)
           {
