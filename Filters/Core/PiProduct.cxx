@@ -404,6 +404,24 @@ static void KeepNearest(double f, const double g[3], int k, int& nearest, double
   }
 }
 
+// The end of EvaluateVertex(Star): unit normal, |∇F| and, if asked, ln|∇F| (−inf where
+// ∇F = 0) from the scaled product's gradient G·2^E.
+static void FinishVertex(
+  const ScaledProduct& s, double normal[3], double& gradientNorm, double* logGradientNorm)
+{
+  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
+  gradientNorm = SafeLdexp(gn, s.E);
+  if (logGradientNorm)
+  {
+    *logGradientNorm = gn > 0 ? std::log(gn) + static_cast<double>(s.E) * std::log(2.0)
+                              : -std::numeric_limits<double>::infinity();
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;
+  }
+}
+
 void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
   int& nearest, double* logGradientNorm) const
 {
@@ -417,17 +435,7 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
     KeepNearest(fi, gi, static_cast<int>(k), nearest, best);
     s.Multiply(fi, gi);
   }
-  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
-  gradientNorm = SafeLdexp(gn, s.E);
-  if (logGradientNorm)
-  {
-    *logGradientNorm = gn > 0 ? std::log(gn) + static_cast<double>(s.E) * std::log(2.0)
-                              : -std::numeric_limits<double>::infinity();
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;
-  }
+  FinishVertex(s, normal, gradientNorm, logGradientNorm);
 }
 
 // F = m·2^e − r as mantissa·2^exponent, the end of EvaluateScaled.
@@ -543,14 +551,7 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
       }
     }
   }
-  const double gn = std::sqrt(s.G[0] * s.G[0] + s.G[1] * s.G[1] + s.G[2] * s.G[2]);
-  gradientNorm = SafeLdexp(gn, s.E);
-  logGradientNorm = gn > 0 ? std::log(gn) + static_cast<double>(s.E) * std::log(2.0)
-                           : -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k)
-  {
-    normal[k] = gn > 0 && std::isfinite(gn) ? s.G[k] / gn : 0.0;
-  }
+  FinishVertex(s, normal, gradientNorm, &logGradientNorm);
   for (int a = 0; a < 6; ++a)
   {
     FinishScaled(m[a], e[a], this->Blending, probeMantissa[a], probeExponent[a]);

@@ -87,7 +87,7 @@ public:
   /// 2^exponent, ordered as Polynomial3::EvaluateStar: −x, +x, −y, +y, −z, +z) in one
   /// pass over the factors, each factor's terms read once (PolynomialFactor::
   /// EvaluateStar): the attributes of a surface point and its singularity probes
-  /// (RayCaster::IsSingular) for a third of the separate evaluations' work. The results
+  /// (RayCaster::Attributes) for a third of the separate evaluations' work. The results
   /// may differ from EvaluateVertex's and EvaluateScaled's in the last bits.
   void EvaluateVertexStar(const double p[3], double probe, double normal[3],
     double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
