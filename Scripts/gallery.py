@@ -28,6 +28,16 @@ COLOURS = [
 ]
 
 
+def save_png(window, path):
+    """Writes what the (rendered) window shows to the PNG file `path`."""
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    writer = vtkPNGWriter()
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.SetFileName(path)
+    writer.Write()
+
+
 def render(model_path, png_path, direction, view_up, inside, size=(640, 480)):
     reader = vtkPiSurfaceModelReader()  # port 0: the Pi-surface, port 1: its primitives
     reader.SetFileName(model_path)
@@ -84,13 +94,7 @@ def render(model_path, png_path, direction, view_up, inside, size=(640, 480)):
     renderer.ResetCamera(reader.GetOutput().GetBounds())
     camera.Zoom(1.15)
     window.Render()
-
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.SetFileName(png_path)
-    writer.Write()
+    save_png(window, png_path)
     return reader.GetOutput().GetNumberOfCells()
 
 

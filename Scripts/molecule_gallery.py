@@ -9,18 +9,17 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gallery import save_png  # noqa: E402
 from molecule_benchmark import splat  # noqa: E402  (the same Sigma pipeline)
 from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
 from vtkmodules.vtkCommonCore import vtkLookupTable
 from vtkmodules.vtkIOChemistry import vtkCMLMoleculeReader
-from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
     vtkActor,
     vtkPolyDataMapper,
     vtkRenderWindow,
     vtkRenderer,
     vtkTextActor,
-    vtkWindowToImageFilter,
 )
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL back end)
@@ -95,13 +94,7 @@ def figure(path, panels, size, zoom=1.0):
         if k == 0:
             camera.Zoom(zoom)
     window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    save_png(window, path)
     print('wrote', path)
 
 

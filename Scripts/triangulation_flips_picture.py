@@ -8,13 +8,13 @@ centroids (how far each triangle leaves the surface).
 import math
 import sys
 
+from gallery import save_png
 from pisurfaces import vtkPiImageTriangulator
 from triangulation_benchmark import distance, load_model, six_views
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
-                                         vtkRenderer, vtkTextActor, vtkWindowToImageFilter)
+                                         vtkRenderer, vtkTextActor)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingFreeType  # noqa: F401
 
@@ -96,13 +96,7 @@ def main():
         renderer.ResetCameraClippingRange()
         window.AddRenderer(renderer)
     window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(out)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    save_png(window, out)
 
 
 if __name__ == "__main__":
