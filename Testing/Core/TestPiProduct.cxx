@@ -113,6 +113,17 @@ Factor RandomPrimitive(Random& rng)
   return FromSpec(s);
 }
 
+/// n random primitives (RandomPrimitive), then Wave() when `wave`.
+std::vector<Factor> RandomFactors(Random& rng, int n, bool wave = false)
+{
+  std::vector<Factor> factors;
+  for (int i = 0; i < n; ++i)
+    factors.push_back(RandomPrimitive(rng));
+  if (wave)
+    factors.push_back(Wave());
+  return factors;
+}
+
 /// Σ|c|·(|q|+1)^pow: the rounding scale of a polynomial factor's value at p.
 double FactorScale(const Factor& f, const double p[3])
 {
@@ -299,12 +310,8 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
   Random rng(44);
   for (int trial = 0; trial < 12; ++trial)
   {
-    std::vector<Factor> factors;
-    const int n = 2 + trial % 4;
-    for (int i = 0; i < n; ++i)
-      factors.push_back(RandomPrimitive(rng));
-    if (trial % 3 == 2)
-      factors.push_back(Wave()); // exercised by both paths too
+    // (with the generic Wave factor in a third of the trials: both paths exercised)
+    const std::vector<Factor> factors = RandomFactors(rng, 2 + trial % 4, trial % 3 == 2);
     const double r = trial % 2 ? 0.1 : 0.0;
     const ProductKernel k(factors, r);
 
@@ -381,10 +388,7 @@ TEST(ProductKernel, RowEvaluationHasTheBitsOfPointEvaluation)
   };
   for (int trial = 0; trial < 20; ++trial)
   {
-    std::vector<Factor> factors;
-    for (int i = 0; i < 1 + trial % 5; ++i)
-      factors.push_back(RandomPrimitive(rng));
-    const ProductKernel k(factors, trial % 2 ? 0.25 : 0.0);
+    const ProductKernel k(RandomFactors(rng, 1 + trial % 5), trial % 2 ? 0.25 : 0.0);
     const Point o = rng.InBox(-2, 2), e = rng.InBox(-2, 2);
     const double d[3] = { (e[0] - o[0]) / 77, (e[1] - o[1]) / 77, (e[2] - o[2]) / 77 };
     check(k, o.data(), d, 1 + trial * 13 % 150, "random primitives"); // partial chunks too
@@ -468,9 +472,7 @@ TEST(ProductKernel, ScaledAndLogFormsAgreeWithEvaluate)
   Random rng(46);
   for (int trial = 0; trial < 20; ++trial)
   {
-    std::vector<Factor> factors;
-    for (int i = 0; i < 3; ++i)
-      factors.push_back(RandomPrimitive(rng));
+    const std::vector<Factor> factors = RandomFactors(rng, 3);
     const double r = trial % 2 ? 0.3 : 0.0;
     const ProductKernel k(factors, r);
     for (int n = 0; n < 20; ++n)
@@ -819,11 +821,7 @@ TEST(ProductKernel, SharedBetweenThreads)
   // "Any number of threads may share one kernel": rows evaluated concurrently give the
   // same bits as sequentially (EvaluateLine and RestrictToLine keep per-thread buffers).
   Random rng(50);
-  std::vector<Factor> factors;
-  for (int i = 0; i < 6; ++i)
-    factors.push_back(RandomPrimitive(rng));
-  factors.push_back(Wave());
-  const ProductKernel k(factors, 0.1);
+  const ProductKernel k(RandomFactors(rng, 6, true), 0.1);
   const int rows = 64, count = 300;
   std::vector<Point> origins(rows), steps(rows);
   for (int r = 0; r < rows; ++r)
@@ -1138,12 +1136,7 @@ TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
   Random rng(45);
   for (int trial = 0; trial < 40; ++trial)
   {
-    std::vector<Factor> factors;
-    const int n = 1 + trial % 5;
-    for (int i = 0; i < n; ++i)
-      factors.push_back(RandomPrimitive(rng));
-    if (trial % 4 == 3)
-      factors.push_back(Wave());
+    const std::vector<Factor> factors = RandomFactors(rng, 1 + trial % 5, trial % 4 == 3);
     const double r = trial % 2 ? 0.05 : 0.0;
     const ProductKernel k(factors, r);
     for (int s = 0; s < 20; ++s)
