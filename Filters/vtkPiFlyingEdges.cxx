@@ -375,6 +375,24 @@ struct SampleBlocks
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
       double* v = this->G->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
+      if (this->Field)
+      {
+        // A field that evaluates a whole box at once (bit for bit as point by point).
+        const int first[3] = { this->G->First(c, 0), this->G->First(c, 1), this->G->First(c, 2) };
+        const int last[3] = { this->G->Last(c, 0), this->G->Last(c, 1), this->G->Last(c, 2) };
+        if (this->Field->EvaluateBox(this->G->Origin, this->G->Spacing, first, last, BlockPoints,
+              BlockPoints * BlockPoints, v))
+        {
+          for (int k = 0; k <= last[2] - first[2]; ++k)
+            for (int j = 0; j <= last[1] - first[1]; ++j)
+              for (int i = 0; i <= last[0] - first[0]; ++i)
+              {
+                double& x = v[(k * BlockPoints + j) * BlockPoints + i];
+                x = std::max(-ValueLimit, std::min(ValueLimit, x));
+              }
+          continue;
+        }
+      }
       for (int k = this->G->First(c, 2); k <= this->G->Last(c, 2); ++k)
       {
         for (int j = this->G->First(c, 1); j <= this->G->Last(c, 1); ++j)
@@ -1206,6 +1224,31 @@ struct VertexAttributes
         b[k] = a[k] + (k == axis ? this->G->Spacing[k] : 0.0);
       }
       double t = (*this->VertexT)[id];
+      const double va = (*this->VertexEnds)[2 * id], vb = (*this->VertexEnds)[2 * id + 1];
+      pisurf::Field::EdgeVertex fast;
+      if (this->Project && this->Kernel->Field && std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
+        this->Kernel->Field->RefineEdge(a, b, va, vb, this->Tolerance, fast) &&
+        !(this->PositiveEnvelope && fast.OffOuterSide))
+      {
+        // The field restricted itself to the edge: Refine's root of a strict bracket and
+        // EvaluateVertex's answers in one call (a root off the outer side takes the
+        // general path below).
+        double x[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          x[k] = a[k] + fast.S * (b[k] - a[k]);
+        }
+        this->Points->SetPoint(id, x);
+        const float nf[3] = { static_cast<float>(fast.Normal[0]),
+          static_cast<float>(fast.Normal[1]), static_cast<float>(fast.Normal[2]) };
+        this->Normals->SetTypedTuple(id, nf);
+        this->Factor->SetValue(id, fast.Nearest);
+        if (this->GradientMagnitude)
+        {
+          this->GradientMagnitude->SetValue(id, fast.GradientNorm);
+        }
+        continue;
+      }
       if (this->Project)
       {
         t = this->Refine(a, b, t, (*this->VertexEnds)[2 * id], (*this->VertexEnds)[2 * id + 1]);
@@ -1705,6 +1748,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
                     << bounds[1] << "] x [" << bounds[2] << ", " << bounds[3] << "] x ["
                     << bounds[4] << ", " << bounds[5] << "] at this resolution: empty mesh");
   }
+  lap("output");
+  lap.Total("total");
   this->UpdateProgress(1.0);
   return 1;
 }

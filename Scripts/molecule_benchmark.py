@@ -83,16 +83,20 @@ def splat(molecule, spacing, kind):
     s.SetInputData(poly)
     s.SetModelBounds(b)
     s.SetSampleDimensions(dims)
-    longest = max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
-    s.SetRadius(3.5 / longest)  # 3.5 A footprint, relative to the longest side
+    if kind == 'gaussian':
+        # vtkGaussianSplatter's Radius is relative to the longest side of the bounds.
+        longest = max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
+        s.SetRadius(3.5 / longest)
+    else:
+        # vtkCheckerboardSplatter's Radius is in world units; its Footprint (voxels on
+        # each side of the splat's voxel) must cover that radius.
+        s.SetRadius(3.5)
+        s.SetFootprint(int(math.ceil(3.5 / spacing)))
     s.SetExponentFactor(-5.0)
     s.ScalarWarpingOff()
     s.NormalWarpingOff()
-    if kind != 'gaussian':
-        s.SetFootprint(int(math.ceil(3.5 / spacing)))
     s.CappingOff()
-    if kind == 'gaussian':
-        s.SetAccumulationModeToSum()  # Blinn: the sum of the Gaussians
+    s.SetAccumulationModeToSum()  # Blinn: the sum of the Gaussians
     fe = vtkFlyingEdges3D()
     fe.SetInputConnection(s.GetOutputPort())
     fe.SetValue(0, LEVEL)

@@ -61,6 +61,54 @@ public:
     (void)p;
     return false;
   }
+
+  /// F at the grid points origin + (i, j, k)·spacing for first <= (i, j, k) <= last
+  /// (the point computed as origin[a] + index·spacing[a], as the mesher does), written
+  /// to values[(k − first[2])·strideZ + (j − first[1])·strideY + (i − first[0])], each
+  /// clamped to ±DBL_MAX and equal bit for bit to Evaluate at that point. A field that
+  /// can share work between the points of a box (a molecule: the atoms near the box are
+  /// found once, and each atom visits only the points it reaches) answers; the default
+  /// says false and the mesher evaluates point by point.
+  virtual bool EvaluateBox(const double origin[3], const double spacing[3], const int first[3],
+    const int last[3], long strideY, long strideZ, double* values) const
+  {
+    (void)origin;
+    (void)spacing;
+    (void)first;
+    (void)last;
+    (void)strideY;
+    (void)strideZ;
+    (void)values;
+    return false;
+  }
+
+  /// A vertex on the mesher's edge from `a` to `b`.
+  struct EdgeVertex
+  {
+    double S = 0.0;          ///< the root, as the fraction of the way from a to b
+    double Normal[3] = { 0, 0, 0 };
+    double GradientNorm = 0.0;
+    int Nearest = -1;
+    bool OffOuterSide = false; ///< OffOuterSide(a + S·(b − a))
+  };
+  /// Where F, with F(a) = va and F(b) = vb of opposite signs (the grid's values), has a
+  /// root on the segment [a, b]: a root within `tolerance` (a length), as the mesher's
+  /// bracketed root finding would return, with EvaluateVertex's answers at the point
+  /// x = a + S·(b − a) (computed component by component with that formula) and whether
+  /// x is OffOuterSide. A field that can restrict itself to the segment once (a
+  /// molecule: the few atoms that reach it) answers in a fraction of the time of
+  /// repeated Evaluate calls; the default says false.
+  virtual bool RefineEdge(const double a[3], const double b[3], double va, double vb,
+    double tolerance, EdgeVertex& vertex) const
+  {
+    (void)a;
+    (void)b;
+    (void)va;
+    (void)vb;
+    (void)tolerance;
+    (void)vertex;
+    return false;
+  }
 };
 }
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiMolecule.h"
 
-#include "PiProduct.h" // SignOfProductMinus
+#include "PiProduct.h"  // SignOfProductMinus
+#include "PiRayRoots.h" // BracketedRoot
 
 #include <algorithm>
 #include <cfloat>
@@ -185,6 +186,8 @@ double BatsanovRadius(int z)
 struct MoleculeField::Cell
 {
   std::vector<int> Near;
+  // Local: the atoms whose sphere (radius R) meets the cell's box, ascending.
+  std::vector<int> Inner;
   bool HasFar = false;
   double Center[3] = { 0, 0, 0 };
   double L0 = 0.0;
@@ -298,6 +301,11 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   }
   this->Cells.resize(count);
   this->Once.reset(new std::once_flag[count]);
+  this->Ready.reset(new std::atomic<char>[count]);
+  for (size_t c = 0; c < count; ++c)
+  {
+    this->Ready[c].store(0, std::memory_order_relaxed);
+  }
   for (int a = 0; a < 3; ++a)
   {
     this->SuperDims[a] = (this->Dims[a] + SuperCells - 1) / SuperCells;
@@ -378,7 +386,11 @@ const MoleculeField::Cell* MoleculeField::CellAt(const double p[3]) const
   }
   const long id = (long(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
   Cell& cell = this->Cells[id];
-  std::call_once(this->Once[id], [&] { this->BuildCell(id, cell); });
+  if (!this->Ready[id].load(std::memory_order_acquire))
+  {
+    std::call_once(this->Once[id], [&] { this->BuildCell(id, cell); });
+    this->Ready[id].store(1, std::memory_order_release);
+  }
   return &cell;
 }
 
@@ -438,6 +450,14 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   std::sort(cell.Near.begin(), cell.Near.end());
   if (this->Settings.Mode == MoleculeMode::Local)
   {
+    for (int i : cell.Near)
+    {
+      // A relative slack far above rounding: an atom too many costs one test.
+      if (Distance2ToBox(&this->Centers[3 * i], box) < this->R2[i] * (1.0 + 1e-9))
+      {
+        cell.Inner.push_back(i);
+      }
+    }
     return;
   }
   // Far atoms. Those beyond R_j + SuperNear of the cell's supercell come through the
@@ -821,6 +841,26 @@ bool MoleculeField::OffOuterSide(const double p[3]) const
   {
     return false; // F = −level >= 0 on the spheres: the argument does not hold
   }
+  if (this->Settings.Mode == MoleculeMode::Local)
+  {
+    // The cell's atoms whose sphere meets its box (a Local cell is cheap to build); no
+    // cell: p is beyond every atom's reach.
+    const Cell* cell = this->CellAt(p);
+    if (!cell)
+    {
+      return false;
+    }
+    for (int i : cell->Inner)
+    {
+      const double* c = &this->Centers[3 * i];
+      const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+      if (dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i])
+      {
+        return true;
+      }
+    }
+    return false;
+  }
   // The atoms binned within the largest radius of p (no cell is built: in Global mode
   // that costs a pass over all atoms).
   const double point[6] = { p[0], p[0], p[1], p[1], p[2], p[2] };
@@ -943,6 +983,362 @@ void MoleculeField::EvaluateVertex(
   }
   const double logNorm = std::log(norm) + logScale;
   gradientNorm = logNorm > LogMax ? DBL_MAX : std::exp(logNorm);
+}
+
+bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
+  const int first[3], const int last[3], long strideY, long strideZ, double* values) const
+{
+  if (this->Settings.Mode != MoleculeMode::Local)
+  {
+    return false;
+  }
+  int n[3];
+  double box[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = last[a] - first[a] + 1;
+    if (n[a] <= 0 || !(spacing[a] > 0))
+    {
+      return false;
+    }
+    box[2 * a] = origin[a] + first[a] * spacing[a];
+    box[2 * a + 1] = origin[a] + last[a] * spacing[a];
+  }
+  // The points' coordinates, as the mesher computes them.
+  thread_local std::vector<double> coordinates;
+  coordinates.resize(size_t(n[0]) + n[1] + n[2]);
+  double* xs = coordinates.data();
+  double* ys = xs + n[0];
+  double* zs = ys + n[1];
+  for (int i = 0; i < n[0]; ++i)
+  {
+    xs[i] = origin[0] + (first[0] + i) * spacing[0];
+  }
+  for (int j = 0; j < n[1]; ++j)
+  {
+    ys[j] = origin[1] + (first[1] + j) * spacing[1];
+  }
+  for (int k = 0; k < n[2]; ++k)
+  {
+    zs[k] = origin[2] + (first[2] + k) * spacing[2];
+  }
+  // Every atom that reaches a point of the box (with a slack far above rounding: an
+  // extra atom multiplies by exactly 1 where it is skipped), in ascending order as in
+  // the cells' lists, so that each point's product is Evaluate's, factor by factor.
+  thread_local std::vector<int> atoms;
+  atoms.clear();
+  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
+    if (Distance2ToBox(&this->Centers[3 * i], box) < this->Rho2[i] * (1.0 + 1e-9))
+    {
+      atoms.push_back(i);
+    }
+    return false;
+  });
+  std::sort(atoms.begin(), atoms.end());
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      std::fill_n(values + k * strideZ + j * strideY, n[0], 1.0);
+    }
+  }
+  const double* centers = this->Centers.data();
+  for (int i : atoms)
+  {
+    const double* c = centers + 3 * i;
+    const double rho2 = this->Rho2[i], r2 = this->R2[i], inverse = this->InvSpan[i];
+    for (int k = 0; k < n[2]; ++k)
+    {
+      const double v2 = zs[k] - c[2];
+      if (v2 * v2 >= rho2)
+      {
+        continue;
+      }
+      for (int j = 0; j < n[1]; ++j)
+      {
+        const double v1 = ys[j] - c[1];
+        // (v0² + v1²) + v2² >= v1² + v2² in floating point too (rounding is monotone):
+        // no point of the row is within ρ.
+        const double across = v1 * v1 + v2 * v2;
+        if (across >= rho2)
+        {
+          continue;
+        }
+        // The points of the row within ρ, widened by one point on each side; the exact
+        // test below decides.
+        const double half = std::sqrt(rho2 - across);
+        const int lo = std::max(0,
+          static_cast<int>(std::floor((c[0] - half - origin[0]) / spacing[0])) - 1 - first[0]);
+        const int hi = std::min(n[0] - 1,
+          static_cast<int>(std::ceil((c[0] + half - origin[0]) / spacing[0])) + 1 - first[0]);
+        double* row = values + k * strideZ + j * strideY;
+        for (int m = lo; m <= hi; ++m)
+        {
+          // ComputeLocal's arithmetic, term by term.
+          const double v0 = xs[m] - c[0];
+          const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
+          if (d2 >= rho2)
+          {
+            continue;
+          }
+          const double f = d2 - r2;
+          if (f <= 0.0)
+          {
+            row[m] *= f;
+            continue;
+          }
+          const double u = f * inverse;
+          const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+          row[m] *= 1.0 + (f - 1.0) * w;
+        }
+      }
+    }
+  }
+  const double level = this->Level;
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      double* row = values + k * strideZ + j * strideY;
+      for (int m = 0; m < n[0]; ++m)
+      {
+        row[m] -= level;
+      }
+    }
+  }
+  return true;
+}
+
+bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb,
+  double tolerance, EdgeVertex& vertex) const
+{
+  if (this->Settings.Mode != MoleculeMode::Local || !((va < 0 && vb > 0) || (va > 0 && vb < 0)))
+  {
+    return false;
+  }
+  // Along one axis, no longer than a cell: the segment lies in the boxes of the cells of
+  // its ends, whose Near lists hold every atom that reaches it.
+  int axis = -1;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (a[k] != b[k])
+    {
+      if (axis >= 0)
+      {
+        return false;
+      }
+      axis = k;
+    }
+  }
+  if (axis < 0)
+  {
+    return false;
+  }
+  const double length = std::fabs(b[axis] - a[axis]);
+  if (!(length <= this->Settings.CellSize))
+  {
+    return false;
+  }
+  const Cell* ca = this->CellAt(a);
+  const Cell* cb = this->CellAt(b);
+  if (!ca || !cb)
+  {
+    return false;
+  }
+  // The atoms reaching the segment, ascending (the two sorted lists merged): per atom
+  // its id, the squared distance K across the axis and w = a[axis] − c[axis].
+  constexpr int Capacity = 256;
+  struct Term
+  {
+    int Id;
+    double K, W, R2, Rho2, InvSpan;
+  };
+  Term terms[Capacity];
+  int count = 0;
+  const double lower = std::min(a[axis], b[axis]), upper = std::max(a[axis], b[axis]);
+  auto consider = [&](int i) {
+    const double* c = &this->Centers[3 * i];
+    double across = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (k != axis)
+      {
+        across += (a[k] - c[k]) * (a[k] - c[k]);
+      }
+    }
+    const double along = c[axis] < lower ? lower - c[axis] : (c[axis] > upper ? c[axis] - upper : 0.0);
+    if (!(across + along * along < this->Rho2[i] * (1.0 + 1e-9)))
+    {
+      return true; // beyond its ρ everywhere on the segment
+    }
+    if (count == Capacity)
+    {
+      return false;
+    }
+    Term& t = terms[count++];
+    t.Id = i;
+    t.K = across;
+    t.W = a[axis] - c[axis];
+    t.R2 = this->R2[i];
+    t.Rho2 = this->Rho2[i];
+    t.InvSpan = this->InvSpan[i];
+    return true;
+  };
+  {
+    const std::vector<int>& p = ca->Near;
+    const std::vector<int>& q = cb == ca ? ca->Near : cb->Near;
+    size_t x = 0, y = cb == ca ? q.size() : 0;
+    while (x < p.size() || y < q.size())
+    {
+      int i;
+      if (y == q.size() || (x < p.size() && p[x] < q[y]))
+      {
+        i = p[x++];
+      }
+      else if (x == p.size() || q[y] < p[x])
+      {
+        i = q[y++];
+      }
+      else
+      {
+        i = p[x++];
+        ++y;
+      }
+      if (!consider(i))
+      {
+        return false; // more atoms than the buffer holds: the general method
+      }
+    }
+  }
+  // F on the segment and its derivative in s, without branches: u clamped to [0, 1]
+  // gives w = 1 inside the sphere (g = f exactly, as f·w + (1 − w)) and w = 0 beyond ρ
+  // (g = 1 exactly), the same g as AtomFactor.
+  const double delta = b[axis] - a[axis];
+  const double level = this->Level;
+  auto phi = [&](double s, double& derivative) {
+    const double shift = s * delta;
+    double product = 1.0, slope = 0.0;
+    for (int m = 0; m < count; ++m)
+    {
+      const Term& t = terms[m];
+      const double v = t.W + shift;
+      const double f = t.K + v * v - t.R2;
+      const double u = std::min(1.0, std::max(0.0, f * t.InvSpan));
+      const double u2 = u * u;
+      const double w = 1.0 - u2 * u * (10.0 - 15.0 * u + 6.0 * u2);
+      const double dw = -30.0 * u2 * (1.0 - u) * (1.0 - u);
+      const double g = f * w + (1.0 - w);
+      const double dg = (w + (f - 1.0) * dw * t.InvSpan) * 2.0 * v * delta;
+      slope = slope * g + product * dg;
+      product *= g;
+    }
+    derivative = slope;
+    return product - level;
+  };
+  // Newton's method kept inside the bracket [lo, hi] (bisection where a step leaves
+  // it), from the linear interpolation of the ends: a smooth F on a short edge converges
+  // in a few steps. When a step is below half the tolerance, F is evaluated just beyond
+  // the new estimate: a sign change there certifies a root within the tolerance, as the
+  // mesher's own root finding does (or |F| below 1e-12 of its values at the ends).
+  const double width = tolerance / length;
+  const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
+  double lo = 0.0, hi = 1.0, flo = va;
+  double s = va / (va - vb);
+  bool certified = false;
+  auto narrow = [&](double at, double f) {
+    if ((f < 0) == (flo < 0))
+    {
+      lo = at;
+      flo = f;
+    }
+    else
+    {
+      hi = at;
+    }
+  };
+  for (int iteration = 0; iteration < 100 && !certified && hi - lo > width; ++iteration)
+  {
+    double derivative;
+    const double f = phi(s, derivative);
+    if (std::fabs(f) <= small)
+    {
+      certified = true;
+      break;
+    }
+    narrow(s, f);
+    double next = s - f / derivative;
+    if (!(next > lo && next < hi))
+    {
+      next = 0.5 * (lo + hi);
+    }
+    else if (std::fabs(next - s) <= 0.5 * width)
+    {
+      // Just beyond the estimate, away from s: a sign change brackets the root within
+      // [s, probe], shorter than the tolerance.
+      const double probe =
+        std::max(lo, std::min(hi, next + (next > s ? 0.5 : -0.5) * width));
+      double unused;
+      const double fp = phi(probe, unused);
+      narrow(probe, fp);
+      if (hi - lo <= width)
+      {
+        s = next;
+        certified = true;
+        break;
+      }
+      next = probe;
+    }
+    s = next;
+  }
+  if (!certified)
+  {
+    s = std::max(lo, std::min(hi, s));
+  }
+  vertex.S = s;
+  double x[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    x[k] = a[k] + vertex.S * (b[k] - a[k]);
+  }
+  // EvaluateVertex's Local branch and OffOuterSide at x, over the same atoms.
+  double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
+  vertex.Nearest = -1;
+  vertex.OffOuterSide = false;
+  for (int m = 0; m < count; ++m)
+  {
+    const int i = terms[m].Id;
+    const double* c = &this->Centers[3 * i];
+    const double v[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
+    const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (level > 0 && d2 < this->Radii[i] * this->Radii[i])
+    {
+      vertex.OffOuterSide = true;
+    }
+    if (d2 >= this->Rho2[i])
+    {
+      continue;
+    }
+    double g[3];
+    const double f = this->AtomFactor(i, x, g);
+    for (int k = 0; k < 3; ++k)
+    {
+      grad[k] = grad[k] * f + product * g[k];
+    }
+    product *= f;
+    const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
+    if (distance < best)
+    {
+      best = distance;
+      vertex.Nearest = i;
+    }
+  }
+  const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
+  vertex.GradientNorm = std::isfinite(norm) ? norm : 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    vertex.Normal[k] = norm > 0 && std::isfinite(norm) ? grad[k] / norm : 0.0;
+  }
+  return true;
 }
 
 int MoleculeField::ClassifyBox(const double box[6]) const

@@ -115,6 +115,17 @@ public:
   /// vertices of a protein, where the far atoms make P astronomically large off the
   /// spheres: the near atoms once per vertex instead of all atoms per root-finding step.
   bool FirstRoot(const double from[3], const double to[3], double tolerance, double& s) const override;
+  /// Local mode: the atoms whose influence reaches the box are found once, and each one
+  /// multiplies only the points within its ρ (the same products, in the same atom
+  /// order, as Evaluate). Global mode: false.
+  bool EvaluateBox(const double origin[3], const double spacing[3], const int first[3],
+    const int last[3], long strideY, long strideZ, double* values) const override;
+  /// Local mode, for an edge along one axis no longer than a cell: the atoms whose ρ
+  /// reaches the edge (from the cells of its two ends) are gathered once; the root is
+  /// found on their product, and the vertex attributes and OffOuterSide come from them
+  /// too. Global mode or other segments: false.
+  bool RefineEdge(const double a[3], const double b[3], double va, double vb, double tolerance,
+    EdgeVertex& vertex) const override;
 
   /// ln|P(p)| over all atoms without any approximation, and the sign of P (−1, 0, 1).
   /// Cost O(atoms): for tests and reference values.
@@ -171,6 +182,8 @@ private:
   std::vector<int> BinStart, BinAtoms; // atoms by cell (CSR)
   mutable std::vector<Cell> Cells;
   std::unique_ptr<std::once_flag[]> Once;
+  // Per cell: set once the cell is built, so that CellAt costs one load afterwards.
+  std::unique_ptr<std::atomic<char>[]> Ready;
   int SuperDims[3] = { 0, 0, 0 };
   mutable std::vector<Super> Supers;
   std::unique_ptr<std::once_flag[]> SuperOnce;

@@ -175,3 +175,136 @@ TEST(MoleculeField, FirstRootIsTheFirstCrossing)
   }
   EXPECT_GE(answered, 100);
 }
+
+// Local mode: a box evaluated at once gives Evaluate's values bit for bit (the mesher
+// mixes both: blocks sample boxes, root finding and other passes evaluate points), for
+// boxes inside the cluster, across its surface and beyond every atom's reach, with the
+// mesher's strided layout.
+TEST(MoleculeField, LocalBoxEqualsPointwise)
+{
+  const Cluster c = MakeCluster(10.0, 5);
+  pisurf::MoleculeSettings settings;
+  settings.Mode = pisurf::MoleculeMode::Local;
+  pisurf::MoleculeField field(c.Centers, c.Radii, settings, c.Region);
+  const double origin[3] = { -14.1, -13.9, -14.05 };
+  const double spacing[3] = { 0.37, 0.41, 0.29 };
+  std::mt19937 rng(3);
+  size_t insideSphere = 0, farAway = 0, points = 0;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    int first[3], last[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      first[a] = static_cast<int>(rng() % 80);
+      last[a] = first[a] + static_cast<int>(rng() % 9); // 1 to 9 points
+    }
+    const long strideY = 9, strideZ = 81;
+    std::vector<double> values(9 * 9 * 9, -12345.0);
+    ASSERT_TRUE(field.EvaluateBox(origin, spacing, first, last, strideY, strideZ, values.data()));
+    for (int k = first[2]; k <= last[2]; ++k)
+      for (int j = first[1]; j <= last[1]; ++j)
+        for (int i = first[0]; i <= last[0]; ++i)
+        {
+          const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+            origin[2] + k * spacing[2] };
+          const double expected = field.Evaluate(p);
+          const double got =
+            values[(k - first[2]) * strideZ + (j - first[1]) * strideY + (i - first[0])];
+          ASSERT_EQ(got, expected) << "at (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+          insideSphere += field.OffOuterSide(p);
+          farAway += expected == 1.0 - field.GetLevel();
+          ++points;
+        }
+  }
+  // The boxes saw every kind of point.
+  EXPECT_GT(insideSphere, points / 20);
+  EXPECT_GT(farAway, points / 20);
+
+  pisurf::MoleculeSettings global;
+  pisurf::MoleculeField globalField(c.Centers, c.Radii, global, c.Region);
+  const int first[3] = { 0, 0, 0 }, last[3] = { 1, 1, 1 };
+  double values[8];
+  EXPECT_FALSE(globalField.EvaluateBox(origin, spacing, first, last, 2, 4, values));
+}
+
+// Local mode: RefineEdge on grid edges that cross the surface returns a root of F
+// within the tolerance (F changes sign across it, |F|/|grad F| small), with
+// EvaluateVertex's normal, gradient norm and atom at that point, and OffOuterSide.
+TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
+{
+  const Cluster c = MakeCluster(10.0, 9);
+  pisurf::MoleculeSettings settings;
+  settings.Mode = pisurf::MoleculeMode::Local;
+  pisurf::MoleculeField field(c.Centers, c.Radii, settings, c.Region);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-13.0, 13.0);
+  const double h = 0.5, tolerance = 1e-10;
+  int refined = 0, offOuter = 0, small = 0;
+  for (int n = 0; n < 200000 && refined < 2000; ++n)
+  {
+    const int axis = static_cast<int>(rng() % 3);
+    double a[3] = { u(rng), u(rng), u(rng) }, b[3] = { a[0], a[1], a[2] };
+    b[axis] += h;
+    const double va = field.Evaluate(a), vb = field.Evaluate(b);
+    if (!((va < 0 && vb > 0) || (va > 0 && vb < 0)))
+    {
+      pisurf::Field::EdgeVertex v;
+      EXPECT_FALSE(field.RefineEdge(a, b, va, vb, tolerance, v)); // no bracket
+      continue;
+    }
+    pisurf::Field::EdgeVertex v;
+    ASSERT_TRUE(field.RefineEdge(a, b, va, vb, tolerance, v));
+    ++refined;
+    ASSERT_GE(v.S, 0.0);
+    ASSERT_LE(v.S, 1.0);
+    double x[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] = a[k] + v.S * (b[k] - a[k]);
+    }
+    double normal[3], gradientNorm;
+    int nearest;
+    field.EvaluateVertex(x, normal, gradientNorm, nearest);
+    ASSERT_GT(gradientNorm, 0.0);
+    // Either |F| is below 1e-12 of its values at the ends (the mesher's rule too: the
+    // ends can differ by ten orders of magnitude where atoms crowd), or |F|/|grad F|,
+    // the distance to the surface to first order, is within the tolerance and the sign
+    // changes within a few tolerances of the vertex along the edge.
+    const double F = field.Evaluate(x);
+    if (std::fabs(F) / gradientNorm <= tolerance)
+    {
+      double before[3], after[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        before[k] = x[k] - (b[k] - a[k]) / h * 10 * tolerance;
+        after[k] = x[k] + (b[k] - a[k]) / h * 10 * tolerance;
+      }
+      EXPECT_NE(field.Evaluate(before) > 0, field.Evaluate(after) > 0);
+    }
+    else
+    {
+      EXPECT_LE(std::fabs(F), 1e-12 * std::max(std::fabs(va), std::fabs(vb)));
+      ++small;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_EQ(v.Normal[k], normal[k]);
+    }
+    EXPECT_EQ(v.GradientNorm, gradientNorm);
+    EXPECT_EQ(v.Nearest, nearest);
+    EXPECT_EQ(v.OffOuterSide, field.OffOuterSide(x));
+    offOuter += v.OffOuterSide;
+  }
+  EXPECT_GE(refined, 2000);
+  EXPECT_LT(small, refined / 100);
+  EXPECT_GT(offOuter, 0); // lens sheets were among them
+
+  // A diagonal segment or a Global field: not handled (the mesher's general method).
+  const double a[3] = { 0, 0, 0 }, b[3] = { 0.1, 0.1, 0 };
+  pisurf::Field::EdgeVertex v;
+  EXPECT_FALSE(field.RefineEdge(a, b, 1.0, -1.0, tolerance, v));
+  pisurf::MoleculeSettings global;
+  pisurf::MoleculeField globalField(c.Centers, c.Radii, global, c.Region);
+  const double b2[3] = { 0.5, 0, 0 };
+  EXPECT_FALSE(globalField.RefineEdge(a, b2, 1.0, -1.0, tolerance, v));
+}

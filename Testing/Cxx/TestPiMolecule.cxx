@@ -3,7 +3,9 @@
 #include "PiTestUtilities.h"
 
 #include "vtkCMLMoleculeReader.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkMassProperties.h"
 #include "vtkMolecule.h"
 #include "vtkNew.h"
 #include "vtkPDBReader.h"
@@ -93,7 +95,20 @@ int Mesh(vtkAlgorithm* source, int mode, double spacing, vtkIdType minimumTriang
   {
     PI_CHECK(Components(out) == components);
   }
-  PI_CHECK(out->GetFieldData()->GetArray("SurfaceArea") != nullptr);
+  // The field data's area and volume are those of the mesh (vtkMassProperties agrees
+  // on a closed mesh; the outer envelope is one).
+  vtkDataArray* area = out->GetFieldData()->GetArray("SurfaceArea");
+  vtkDataArray* volume = out->GetFieldData()->GetArray("EnclosedVolume");
+  PI_CHECK(area && volume);
+  if (area && volume)
+  {
+    vtkNew<vtkMassProperties> mass;
+    mass->SetInputData(out);
+    mass->Update();
+    PI_CHECK_NEAR(area->GetTuple1(0), mass->GetSurfaceArea(), 1e-9 * mass->GetSurfaceArea());
+    PI_CHECK_NEAR(volume->GetTuple1(0), mass->GetVolume(), 1e-6 * mass->GetVolume());
+    PI_CHECK(volume->GetTuple1(0) > 0);
+  }
   if (failures)
   {
     std::cerr << "  while meshing (mode " << mode << ", spacing " << spacing << ")\n";
