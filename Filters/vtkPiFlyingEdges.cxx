@@ -1225,14 +1225,19 @@ struct VertexAttributes
       }
       double t = (*this->VertexT)[id];
       const double va = (*this->VertexEnds)[2 * id], vb = (*this->VertexEnds)[2 * id + 1];
+      // The field restricted to the edge, in one call: Refine's root of a strict bracket,
+      // or the crossing nearest the end t where the ends have one sign (a thin wall),
+      // and EvaluateVertex's answers there. A root off the outer side takes the general
+      // path below, which looks for the outer sheet.
+      const bool bracket = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+      const bool thinWall = ((va > 0 && vb > 0) || (va < 0 && vb < 0)) && (t == 0.0 || t == 1.0);
       pisurf::Field::EdgeVertex fast;
-      if (this->Project && this->Kernel->Field && std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
-        this->Kernel->Field->RefineEdge(a, b, va, vb, this->Tolerance, fast) &&
+      if (this->Project && this->Kernel->Field && (bracket || thinWall) &&
+        std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
+        this->Kernel->Field->RefineEdge(
+          a, b, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
         !(this->PositiveEnvelope && fast.OffOuterSide))
       {
-        // The field restricted itself to the edge: Refine's root of a strict bracket and
-        // EvaluateVertex's answers in one call (a root off the outer side takes the
-        // general path below).
         double x[3];
         for (int k = 0; k < 3; ++k)
         {

@@ -91,20 +91,24 @@ public:
     int Nearest = -1;
     bool OffOuterSide = false; ///< OffOuterSide(a + S·(b − a))
   };
-  /// Where F, with F(a) = va and F(b) = vb of opposite signs (the grid's values), has a
-  /// root on the segment [a, b]: a root within `tolerance` (a length), as the mesher's
-  /// bracketed root finding would return, with EvaluateVertex's answers at the point
-  /// x = a + S·(b − a) (computed component by component with that formula) and whether
-  /// x is OffOuterSide. A field that can restrict itself to the segment once (a
-  /// molecule: the few atoms that reach it) answers in a fraction of the time of
-  /// repeated Evaluate calls; the default says false.
-  virtual bool RefineEdge(const double a[3], const double b[3], double va, double vb,
+  /// A vertex on the segment [a, b] where F(a) = va and F(b) = vb (the grid's values):
+  /// with `from` = −1 and va, vb of opposite signs, a root within `tolerance` (a
+  /// length), as the mesher's bracketed root finding would return; with `from` = 0 or 1
+  /// (the end a or b), the first sign change met in 16 equal steps from that end and a
+  /// root within it, as the mesher's search for the sheet nearest an end (a thin wall
+  /// the grid does not resolve) would return; false if there is none. With the root,
+  /// EvaluateVertex's answers at x = a + S·(b − a) (computed component by component with
+  /// that formula) and whether x is OffOuterSide. A field that can restrict itself to
+  /// the segment once (a molecule: the few atoms that reach it) answers in a fraction of
+  /// the time of repeated Evaluate calls; the default says false.
+  virtual bool RefineEdge(const double a[3], const double b[3], double va, double vb, int from,
     double tolerance, EdgeVertex& vertex) const
   {
     (void)a;
     (void)b;
     (void)va;
     (void)vb;
+    (void)from;
     (void)tolerance;
     (void)vertex;
     return false;

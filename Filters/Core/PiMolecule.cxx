@@ -1110,9 +1110,10 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
 }
 
 bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb,
-  double tolerance, EdgeVertex& vertex) const
+  int from, double tolerance, EdgeVertex& vertex) const
 {
-  if (this->Settings.Mode != MoleculeMode::Local || !((va < 0 && vb > 0) || (va > 0 && vb < 0)))
+  const bool bracket = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+  if (this->Settings.Mode != MoleculeMode::Local || (from < 0 && !bracket) || from > 1)
   {
     return false;
   }
@@ -1147,47 +1148,49 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   }
   // The atoms reaching the segment, ascending (the two sorted lists merged): per atom
   // its id, the squared distance K across the axis and w = a[axis] − c[axis].
-  constexpr int Capacity = 256;
+  const std::vector<int>& p = ca->Near;
+  const std::vector<int>& q = cb->Near;
   struct Term
   {
     int Id;
     double K, W, R2, Rho2, InvSpan;
   };
-  Term terms[Capacity];
+  thread_local std::vector<Term> buffer;
+  if (buffer.size() < p.size() + q.size())
+  {
+    buffer.resize(p.size() + q.size());
+  }
+  Term* terms = buffer.data();
   int count = 0;
   const double lower = std::min(a[axis], b[axis]), upper = std::max(a[axis], b[axis]);
+  const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
+  // Written in any case, kept (count advanced) only if its ρ reaches the segment: no
+  // branch to mispredict.
   auto consider = [&](int i) {
     const double* c = &this->Centers[3 * i];
-    double across = 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      if (k != axis)
-      {
-        across += (a[k] - c[k]) * (a[k] - c[k]);
-      }
-    }
-    const double along = c[axis] < lower ? lower - c[axis] : (c[axis] > upper ? c[axis] - upper : 0.0);
-    if (!(across + along * along < this->Rho2[i] * (1.0 + 1e-9)))
-    {
-      return true; // beyond its ρ everywhere on the segment
-    }
-    if (count == Capacity)
-    {
-      return false;
-    }
-    Term& t = terms[count++];
+    const double x1 = a[u1] - c[u1], x2 = a[u2] - c[u2];
+    const double across = x1 * x1 + x2 * x2;
+    const double below = lower - c[axis], above = c[axis] - upper;
+    const double along = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    Term& t = terms[count];
     t.Id = i;
     t.K = across;
     t.W = a[axis] - c[axis];
     t.R2 = this->R2[i];
     t.Rho2 = this->Rho2[i];
     t.InvSpan = this->InvSpan[i];
-    return true;
+    count += across + along * along < t.Rho2 * (1.0 + 1e-9);
   };
+  if (cb == ca)
   {
-    const std::vector<int>& p = ca->Near;
-    const std::vector<int>& q = cb == ca ? ca->Near : cb->Near;
-    size_t x = 0, y = cb == ca ? q.size() : 0;
+    for (int i : p)
+    {
+      consider(i);
+    }
+  }
+  else
+  {
+    size_t x = 0, y = 0;
     while (x < p.size() || y < q.size())
     {
       int i;
@@ -1204,10 +1207,7 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
         i = p[x++];
         ++y;
       }
-      if (!consider(i))
-      {
-        return false; // more atoms than the buffer holds: the general method
-      }
+      consider(i);
     }
   }
   // F on the segment and its derivative in s, without branches: u clamped to [0, 1]
@@ -1215,36 +1215,83 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   // (g = 1 exactly), the same g as AtomFactor.
   const double delta = b[axis] - a[axis];
   const double level = this->Level;
+  // g and dg/ds of one term at s (shift = s·delta).
+  auto term = [delta](const Term& t, double shift, double& dg) {
+    const double v = t.W + shift;
+    const double f = t.K + v * v - t.R2;
+    double u = f * t.InvSpan;
+    u = u > 0.0 ? u : 0.0;
+    u = u < 1.0 ? u : 1.0;
+    const double u2 = u * u;
+    const double w = 1.0 - u2 * u * (10.0 - 15.0 * u + 6.0 * u2);
+    const double dw = -30.0 * u2 * (1.0 - u) * (1.0 - u);
+    dg = (w + (f - 1.0) * dw * t.InvSpan) * 2.0 * v * delta;
+    return f * w + (1.0 - w);
+  };
+  // Two partial products (even and odd terms) halve the chain of dependent multiplies.
   auto phi = [&](double s, double& derivative) {
     const double shift = s * delta;
-    double product = 1.0, slope = 0.0;
-    for (int m = 0; m < count; ++m)
+    double p0 = 1.0, p1 = 1.0, d0 = 0.0, d1 = 0.0;
+    int m = 0;
+    for (; m + 1 < count; m += 2)
     {
-      const Term& t = terms[m];
-      const double v = t.W + shift;
-      const double f = t.K + v * v - t.R2;
-      const double u = std::min(1.0, std::max(0.0, f * t.InvSpan));
-      const double u2 = u * u;
-      const double w = 1.0 - u2 * u * (10.0 - 15.0 * u + 6.0 * u2);
-      const double dw = -30.0 * u2 * (1.0 - u) * (1.0 - u);
-      const double g = f * w + (1.0 - w);
-      const double dg = (w + (f - 1.0) * dw * t.InvSpan) * 2.0 * v * delta;
-      slope = slope * g + product * dg;
-      product *= g;
+      double dg0, dg1;
+      const double g0 = term(terms[m], shift, dg0);
+      const double g1 = term(terms[m + 1], shift, dg1);
+      d0 = d0 * g0 + p0 * dg0;
+      p0 *= g0;
+      d1 = d1 * g1 + p1 * dg1;
+      p1 *= g1;
     }
-    derivative = slope;
-    return product - level;
+    if (m < count)
+    {
+      double dg0;
+      const double g0 = term(terms[m], shift, dg0);
+      d0 = d0 * g0 + p0 * dg0;
+      p0 *= g0;
+    }
+    derivative = d0 * p1 + p0 * d1;
+    return p0 * p1 - level;
   };
-  // Newton's method kept inside the bracket [lo, hi] (bisection where a step leaves
-  // it), from the linear interpolation of the ends: a smooth F on a short edge converges
-  // in a few steps. When a step is below half the tolerance, F is evaluated just beyond
-  // the new estimate: a sign change there certifies a root within the tolerance, as the
-  // mesher's own root finding does (or |F| below 1e-12 of its values at the ends).
+  // The bracket [lo, hi] (F's value flo at lo, fhi at hi): the edge, or the first step
+  // of 16 from the end `from` where F changes sign.
+  double lo = 0.0, hi = 1.0, flo = va, fhi = vb;
+  if (from >= 0)
+  {
+    constexpr int Steps = 16;
+    double s0 = from, f0 = from == 0 ? va : vb;
+    bool found = false;
+    for (int m = 1; m <= Steps && !found; ++m)
+    {
+      const double s1 = from == 0 ? double(m) / Steps : 1.0 - double(m) / Steps;
+      double unused;
+      const double f1 = m == Steps ? (from == 0 ? vb : va) : phi(s1, unused);
+      if ((f0 > 0) != (f1 > 0) || f1 == 0.0)
+      {
+        found = true;
+        lo = std::min(s0, s1);
+        hi = std::max(s0, s1);
+        flo = s0 < s1 ? f0 : f1;
+        fhi = s0 < s1 ? f1 : f0;
+      }
+      s0 = s1;
+      f0 = f1;
+    }
+    if (!found)
+    {
+      return false; // F keeps its sign at every step: the general method decides
+    }
+  }
+  // Newton's method kept inside the bracket (bisection where a step leaves it), from
+  // the linear interpolation of its ends: a smooth F on a short edge converges in a few
+  // steps. When a step is below half the tolerance, F is evaluated just beyond the new
+  // estimate: a sign change there certifies a root within the tolerance, as the
+  // mesher's own root finding does (or |F| below 1e-12 of its values at the edge's
+  // ends).
   const double width = tolerance / length;
   const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
-  double lo = 0.0, hi = 1.0, flo = va;
-  double s = va / (va - vb);
-  bool certified = false;
+  double s = flo == 0.0 ? lo : (fhi == 0.0 ? hi : lo + (hi - lo) * flo / (flo - fhi));
+  bool certified = flo == 0.0 || fhi == 0.0;
   auto narrow = [&](double at, double f) {
     if ((f < 0) == (flo < 0))
     {

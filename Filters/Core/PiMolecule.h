@@ -124,8 +124,8 @@ public:
   /// reaches the edge (from the cells of its two ends) are gathered once; the root is
   /// found on their product, and the vertex attributes and OffOuterSide come from them
   /// too. Global mode or other segments: false.
-  bool RefineEdge(const double a[3], const double b[3], double va, double vb, double tolerance,
-    EdgeVertex& vertex) const override;
+  bool RefineEdge(const double a[3], const double b[3], double va, double vb, int from,
+    double tolerance, EdgeVertex& vertex) const override;
 
   /// ln|P(p)| over all atoms without any approximation, and the sign of P (−1, 0, 1).
   /// Cost O(atoms): for tests and reference values.

@@ -239,7 +239,7 @@ TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> u(-13.0, 13.0);
   const double h = 0.5, tolerance = 1e-10;
-  int refined = 0, offOuter = 0, small = 0;
+  int refined = 0, offOuter = 0, small = 0, walls = 0;
   for (int n = 0; n < 200000 && refined < 2000; ++n)
   {
     const int axis = static_cast<int>(rng() % 3);
@@ -249,11 +249,42 @@ TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
     if (!((va < 0 && vb > 0) || (va > 0 && vb < 0)))
     {
       pisurf::Field::EdgeVertex v;
-      EXPECT_FALSE(field.RefineEdge(a, b, va, vb, tolerance, v)); // no bracket
+      EXPECT_FALSE(field.RefineEdge(a, b, va, vb, -1, tolerance, v)); // no bracket
+      // From an end: the first of 16 steps where F changes sign (found here with
+      // Evaluate), and a root in it; none: false.
+      const int from = static_cast<int>(rng() % 2);
+      double crossing[2] = { -1, -1 };
+      double s0 = from, f0 = from ? vb : va;
+      for (int m = 1; m <= 16; ++m)
+      {
+        const double s1 = from ? 1.0 - m / 16.0 : m / 16.0;
+        double p[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          p[k] = a[k] + s1 * (b[k] - a[k]);
+        }
+        const double f1 = m == 16 ? (from ? va : vb) : field.Evaluate(p);
+        if ((f0 > 0) != (f1 > 0))
+        {
+          crossing[0] = std::min(s0, s1);
+          crossing[1] = std::max(s0, s1);
+          break;
+        }
+        s0 = s1;
+        f0 = f1;
+      }
+      const bool found = field.RefineEdge(a, b, va, vb, from, tolerance, v);
+      EXPECT_EQ(found, crossing[0] >= 0);
+      if (found && crossing[0] >= 0)
+      {
+        ++walls;
+        EXPECT_GE(v.S, crossing[0] - 1e-12);
+        EXPECT_LE(v.S, crossing[1] + 1e-12);
+      }
       continue;
     }
     pisurf::Field::EdgeVertex v;
-    ASSERT_TRUE(field.RefineEdge(a, b, va, vb, tolerance, v));
+    ASSERT_TRUE(field.RefineEdge(a, b, va, vb, -1, tolerance, v));
     ++refined;
     ASSERT_GE(v.S, 0.0);
     ASSERT_LE(v.S, 1.0);
@@ -297,14 +328,15 @@ TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
   }
   EXPECT_GE(refined, 2000);
   EXPECT_LT(small, refined / 100);
+  EXPECT_GT(walls, 20); // edges with a thin wall between ends of one sign
   EXPECT_GT(offOuter, 0); // lens sheets were among them
 
   // A diagonal segment or a Global field: not handled (the mesher's general method).
   const double a[3] = { 0, 0, 0 }, b[3] = { 0.1, 0.1, 0 };
   pisurf::Field::EdgeVertex v;
-  EXPECT_FALSE(field.RefineEdge(a, b, 1.0, -1.0, tolerance, v));
+  EXPECT_FALSE(field.RefineEdge(a, b, 1.0, -1.0, -1, tolerance, v));
   pisurf::MoleculeSettings global;
   pisurf::MoleculeField globalField(c.Centers, c.Radii, global, c.Region);
   const double b2[3] = { 0.5, 0, 0 };
-  EXPECT_FALSE(globalField.RefineEdge(a, b2, 1.0, -1.0, tolerance, v));
+  EXPECT_FALSE(globalField.RefineEdge(a, b2, 1.0, -1.0, -1, tolerance, v));
 }
