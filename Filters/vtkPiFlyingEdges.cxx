@@ -618,6 +618,16 @@ public:
           const double* v = skipped ? nullptr
                                     : grid->Values +
               size_t(grid->Slot[b]) * BlockPoints * BlockPoints * BlockPoints;
+          // The field's OffOuterSide for the whole block at once, where it can.
+          unsigned char off[BlockPoints * BlockPoints * BlockPoints];
+          bool boxed = false;
+          if (!skipped && field && outside > 0)
+          {
+            const int first[3] = { grid->First(c, 0), grid->First(c, 1), grid->First(c, 2) };
+            const int last[3] = { grid->Last(c, 0), grid->Last(c, 1), grid->Last(c, 2) };
+            boxed = field->OffOuterSideBox(grid->Origin, grid->Spacing, first, last,
+              BlockPoints, BlockPoints * BlockPoints, off);
+          }
           for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
             for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
             {
@@ -636,7 +646,20 @@ public:
               {
                 row[i] = vr[i] >= 0 ? 2 : -2;
               }
-              if (field && outside > 0)
+              if (boxed)
+              {
+                const unsigned char* o = off +
+                  size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints -
+                  c[0] * BlockCells;
+                for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
+                {
+                  if (row[i] == 2 && o[i])
+                  {
+                    row[i] = -2; // positive, but never on the outer side
+                  }
+                }
+              }
+              else if (field && outside > 0)
               {
                 for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
                 {
@@ -1590,6 +1613,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     }
     envelope.reset(
       new Envelope(g, 2 * positive >= total ? 1 : -1, this->Internals->State, field.get()));
+    lap("envelope states");
     envelope->Flood();
   }
   if (this->CheckAbort())

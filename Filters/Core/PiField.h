@@ -82,6 +82,22 @@ public:
     return false;
   }
 
+  /// OffOuterSide at the same grid points as EvaluateBox, written as 1 (true) or 0 to
+  /// flags[(k − first[2])·strideZ + (j − first[1])·strideY + (i − first[0])], each equal
+  /// to OffOuterSide at that point. The default says false (not answered).
+  virtual bool OffOuterSideBox(const double origin[3], const double spacing[3],
+    const int first[3], const int last[3], long strideY, long strideZ, unsigned char* flags) const
+  {
+    (void)origin;
+    (void)spacing;
+    (void)first;
+    (void)last;
+    (void)strideY;
+    (void)strideZ;
+    (void)flags;
+    return false;
+  }
+
   /// A vertex on the mesher's edge from `a` to `b`.
   struct EdgeVertex
   {

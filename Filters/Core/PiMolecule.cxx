@@ -1109,6 +1109,87 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   return true;
 }
 
+bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing[3],
+  const int first[3], const int last[3], long strideY, long strideZ, unsigned char* flags) const
+{
+  int n[3];
+  double box[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = last[a] - first[a] + 1;
+    if (n[a] <= 0 || !(spacing[a] > 0))
+    {
+      return false;
+    }
+    box[2 * a] = origin[a] + first[a] * spacing[a];
+    box[2 * a + 1] = origin[a] + last[a] * spacing[a];
+  }
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      std::fill_n(flags + k * strideZ + j * strideY, n[0], static_cast<unsigned char>(0));
+    }
+  }
+  if (!(this->Level > 0))
+  {
+    return true; // OffOuterSide is false everywhere
+  }
+  thread_local std::vector<double> coordinates;
+  coordinates.resize(size_t(n[0]) + n[1] + n[2]);
+  double* xs = coordinates.data();
+  double* ys = xs + n[0];
+  double* zs = ys + n[1];
+  for (int i = 0; i < n[0]; ++i)
+  {
+    xs[i] = origin[0] + (first[0] + i) * spacing[0];
+  }
+  for (int j = 0; j < n[1]; ++j)
+  {
+    ys[j] = origin[1] + (first[1] + j) * spacing[1];
+  }
+  for (int k = 0; k < n[2]; ++k)
+  {
+    zs[k] = origin[2] + (first[2] + k) * spacing[2];
+  }
+  this->ForAtomsNear(box, this->MaxRadius, [&](int i) {
+    const double* c = &this->Centers[3 * i];
+    const double r2 = this->Radii[i] * this->Radii[i];
+    if (!(Distance2ToBox(c, box) < r2 * (1.0 + 1e-9)))
+    {
+      return false;
+    }
+    for (int k = 0; k < n[2]; ++k)
+    {
+      const double dz = zs[k] - c[2];
+      for (int j = 0; j < n[1]; ++j)
+      {
+        const double dy = ys[j] - c[1];
+        // (dx² + dy²) + dz² >= dy² + dz² in floating point too.
+        const double across = dy * dy + dz * dz;
+        if (across >= r2)
+        {
+          continue;
+        }
+        const double half = std::sqrt(r2 - across);
+        const int lo = std::max(0,
+          static_cast<int>(std::floor((c[0] - half - origin[0]) / spacing[0])) - 1 - first[0]);
+        const int hi = std::min(n[0] - 1,
+          static_cast<int>(std::ceil((c[0] + half - origin[0]) / spacing[0])) + 1 - first[0]);
+        unsigned char* row = flags + k * strideZ + j * strideY;
+        for (int m = lo; m <= hi; ++m)
+        {
+          // OffOuterSide's test, term by term.
+          const double dx = xs[m] - c[0];
+          row[m] |= dx * dx + dy * dy + dz * dz < r2;
+        }
+      }
+    }
+    return false;
+  });
+  return true;
+}
+
 bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb,
   int from, double tolerance, EdgeVertex& vertex) const
 {

@@ -120,6 +120,10 @@ public:
   /// order, as Evaluate). Global mode: false.
   bool EvaluateBox(const double origin[3], const double spacing[3], const int first[3],
     const int last[3], long strideY, long strideZ, double* values) const override;
+  /// Both modes: the atoms whose sphere meets the box are found once, and each marks
+  /// the points strictly inside it (OffOuterSide's test, term by term).
+  bool OffOuterSideBox(const double origin[3], const double spacing[3], const int first[3],
+    const int last[3], long strideY, long strideZ, unsigned char* flags) const override;
   /// Local mode, for an edge along one axis no longer than a cell: the atoms whose ρ
   /// reaches the edge (from the cells of its two ends) are gathered once; the root is
   /// found on their product, and the vertex attributes and OffOuterSide come from them

@@ -340,3 +340,43 @@ TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
   const double b2[3] = { 0.5, 0, 0 };
   EXPECT_FALSE(globalField.RefineEdge(a, b2, 1.0, -1.0, -1, tolerance, v));
 }
+
+// Both modes: OffOuterSideBox marks exactly the points OffOuterSide says true for.
+TEST(MoleculeField, OffOuterSideBoxEqualsPointwise)
+{
+  const Cluster c = MakeCluster(8.0, 11);
+  for (int mode = 0; mode < 2; ++mode)
+  {
+    pisurf::MoleculeSettings settings;
+    settings.Mode = mode ? pisurf::MoleculeMode::Local : pisurf::MoleculeMode::Global;
+    pisurf::MoleculeField field(c.Centers, c.Radii, settings, c.Region);
+    const double origin[3] = { -12.1, -11.9, -12.05 };
+    const double spacing[3] = { 0.33, 0.41, 0.29 };
+    std::mt19937 rng(7 + mode);
+    size_t marked = 0, points = 0;
+    for (int trial = 0; trial < 40; ++trial)
+    {
+      int first[3], last[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        first[a] = static_cast<int>(rng() % 70);
+        last[a] = first[a] + static_cast<int>(rng() % 9);
+      }
+      std::vector<unsigned char> flags(9 * 9 * 9, 7);
+      ASSERT_TRUE(field.OffOuterSideBox(origin, spacing, first, last, 9, 81, flags.data()));
+      for (int k = first[2]; k <= last[2]; ++k)
+        for (int j = first[1]; j <= last[1]; ++j)
+          for (int i = first[0]; i <= last[0]; ++i)
+          {
+            const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+              origin[2] + k * spacing[2] };
+            const unsigned char got = flags[(k - first[2]) * 81 + (j - first[1]) * 9 + (i - first[0])];
+            ASSERT_EQ(got, field.OffOuterSide(p) ? 1 : 0);
+            marked += got;
+            ++points;
+          }
+    }
+    EXPECT_GT(marked, points / 20);
+    EXPECT_LT(marked, points - points / 10);
+  }
+}
