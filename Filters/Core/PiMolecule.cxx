@@ -1043,6 +1043,7 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
     }
   }
   const double* centers = this->Centers.data();
+  const double inverse0 = 1.0 / spacing[0];
   for (int i : atoms)
   {
     const double* c = centers + 3 * i;
@@ -1064,32 +1065,24 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
         {
           continue;
         }
-        // The points of the row within ρ, widened by one point on each side; the exact
-        // test below decides.
+        // The points of the row within ρ, widened by two points on each side (the
+        // conversion truncates); the exact test below decides.
         const double half = std::sqrt(rho2 - across);
-        const int lo = std::max(0,
-          static_cast<int>(std::floor((c[0] - half - origin[0]) / spacing[0])) - 1 - first[0]);
-        const int hi = std::min(n[0] - 1,
-          static_cast<int>(std::ceil((c[0] + half - origin[0]) / spacing[0])) + 1 - first[0]);
+        const int lo = std::max(0, static_cast<int>((c[0] - half - origin[0]) * inverse0) - 2 - first[0]);
+        const int hi =
+          std::min(n[0] - 1, static_cast<int>((c[0] + half - origin[0]) * inverse0) + 2 - first[0]);
         double* row = values + k * strideZ + j * strideY;
         for (int m = lo; m <= hi; ++m)
         {
-          // ComputeLocal's arithmetic, term by term.
+          // ComputeLocal's arithmetic, term by term, its branches as selects (the
+          // multiply by exactly 1 where the atom is skipped changes nothing).
           const double v0 = xs[m] - c[0];
           const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-          if (d2 >= rho2)
-          {
-            continue;
-          }
           const double f = d2 - r2;
-          if (f <= 0.0)
-          {
-            row[m] *= f;
-            continue;
-          }
           const double u = f * inverse;
           const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-          row[m] *= 1.0 + (f - 1.0) * w;
+          const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
+          row[m] *= d2 < rho2 ? g : 1.0;
         }
       }
     }
@@ -1228,20 +1221,31 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     return false;
   }
   // The atoms reaching the segment, ascending (the two sorted lists merged): per atom
-  // its id, the squared distance K across the axis and w = a[axis] − c[axis].
+  // its id, the squared distance K across the axis, W = a[axis] − c[axis], R², ρ² and
+  // 1/(ρ² − R²), as arrays (the evaluation below is vectorized over the atoms).
   const std::vector<int>& p = ca->Near;
   const std::vector<int>& q = cb->Near;
-  struct Term
+  struct Terms
   {
-    int Id;
-    double K, W, R2, Rho2, InvSpan;
+    std::vector<int> Id;
+    std::vector<double> Values; // K, W, R², ρ², 1/span, g, dg/ds: 7 arrays
+    size_t Size = 0;
   };
-  thread_local std::vector<Term> buffer;
-  if (buffer.size() < p.size() + q.size())
+  thread_local Terms buffer;
+  if (buffer.Size < p.size() + q.size() + 1)
   {
-    buffer.resize(p.size() + q.size());
+    buffer.Size = p.size() + q.size() + 1;
+    buffer.Id.resize(buffer.Size);
+    buffer.Values.resize(7 * buffer.Size);
   }
-  Term* terms = buffer.data();
+  int* const ids = buffer.Id.data();
+  double* const K = buffer.Values.data();
+  double* const W = K + buffer.Size;
+  double* const R2 = W + buffer.Size;
+  double* const Rho2 = R2 + buffer.Size;
+  double* const Inverse = Rho2 + buffer.Size;
+  double* const G = Inverse + buffer.Size;
+  double* const DG = G + buffer.Size;
   int count = 0;
   const double lower = std::min(a[axis], b[axis]), upper = std::max(a[axis], b[axis]);
   const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
@@ -1253,14 +1257,13 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     const double across = x1 * x1 + x2 * x2;
     const double below = lower - c[axis], above = c[axis] - upper;
     const double along = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
-    Term& t = terms[count];
-    t.Id = i;
-    t.K = across;
-    t.W = a[axis] - c[axis];
-    t.R2 = this->R2[i];
-    t.Rho2 = this->Rho2[i];
-    t.InvSpan = this->InvSpan[i];
-    count += across + along * along < t.Rho2 * (1.0 + 1e-9);
+    ids[count] = i;
+    K[count] = across;
+    W[count] = a[axis] - c[axis];
+    R2[count] = this->R2[i];
+    Rho2[count] = this->Rho2[i];
+    Inverse[count] = this->InvSpan[i];
+    count += across + along * along < Rho2[count] * (1.0 + 1e-9);
   };
   if (cb == ca)
   {
@@ -1296,40 +1299,36 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   // (g = 1 exactly), the same g as AtomFactor.
   const double delta = b[axis] - a[axis];
   const double level = this->Level;
-  // g and dg/ds of one term at s (shift = s·delta).
-  auto term = [delta](const Term& t, double shift, double& dg) {
-    const double v = t.W + shift;
-    const double f = t.K + v * v - t.R2;
-    double u = f * t.InvSpan;
-    u = u > 0.0 ? u : 0.0;
-    u = u < 1.0 ? u : 1.0;
-    const double u2 = u * u;
-    const double w = 1.0 - u2 * u * (10.0 - 15.0 * u + 6.0 * u2);
-    const double dw = -30.0 * u2 * (1.0 - u) * (1.0 - u);
-    dg = (w + (f - 1.0) * dw * t.InvSpan) * 2.0 * v * delta;
-    return f * w + (1.0 - w);
-  };
-  // Two partial products (even and odd terms) halve the chain of dependent multiplies.
+  // Each term's g and dg/ds at s (vectorized), then their product and its derivative
+  // in two interleaved partial products (half the chain of dependent multiplies).
   auto phi = [&](double s, double& derivative) {
     const double shift = s * delta;
+    for (int m = 0; m < count; ++m)
+    {
+      const double v = W[m] + shift;
+      const double f = K[m] + v * v - R2[m];
+      double u = f * Inverse[m];
+      u = u > 0.0 ? u : 0.0;
+      u = u < 1.0 ? u : 1.0;
+      const double uu = u * u;
+      const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
+      const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
+      G[m] = f * w + (1.0 - w);
+      DG[m] = (w + (f - 1.0) * dw * Inverse[m]) * 2.0 * v * delta;
+    }
     double p0 = 1.0, p1 = 1.0, d0 = 0.0, d1 = 0.0;
     int m = 0;
     for (; m + 1 < count; m += 2)
     {
-      double dg0, dg1;
-      const double g0 = term(terms[m], shift, dg0);
-      const double g1 = term(terms[m + 1], shift, dg1);
-      d0 = d0 * g0 + p0 * dg0;
-      p0 *= g0;
-      d1 = d1 * g1 + p1 * dg1;
-      p1 *= g1;
+      d0 = d0 * G[m] + p0 * DG[m];
+      p0 *= G[m];
+      d1 = d1 * G[m + 1] + p1 * DG[m + 1];
+      p1 *= G[m + 1];
     }
     if (m < count)
     {
-      double dg0;
-      const double g0 = term(terms[m], shift, dg0);
-      d0 = d0 * g0 + p0 * dg0;
-      p0 *= g0;
+      d0 = d0 * G[m] + p0 * DG[m];
+      p0 *= G[m];
     }
     derivative = d0 * p1 + p0 * d1;
     return p0 * p1 - level;
@@ -1428,13 +1427,14 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   {
     x[k] = a[k] + vertex.S * (b[k] - a[k]);
   }
-  // EvaluateVertex's Local branch and OffOuterSide at x, over the same atoms.
+  // EvaluateVertex's Local branch (to rounding) and OffOuterSide at x, over the same
+  // atoms.
   double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
   vertex.Nearest = -1;
   vertex.OffOuterSide = false;
   for (int m = 0; m < count; ++m)
   {
-    const int i = terms[m].Id;
+    const int i = ids[m];
     const double* c = &this->Centers[3 * i];
     const double v[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
     const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -1442,17 +1442,25 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     {
       vertex.OffOuterSide = true;
     }
-    if (d2 >= this->Rho2[i])
+    if (d2 >= Rho2[m])
     {
       continue;
     }
-    double g[3];
-    const double f = this->AtomFactor(i, x, g);
+    // g and ∇g = 2(w + (f − 1) w'(u)/span) v, as AtomFactor, with the inverse span.
+    const double f = d2 - R2[m];
+    double u = f * Inverse[m];
+    u = u > 0.0 ? u : 0.0;
+    u = u < 1.0 ? u : 1.0;
+    const double uu = u * u;
+    const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
+    const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
+    const double g = f * w + (1.0 - w);
+    const double scale = 2.0 * (w + (f - 1.0) * dw * Inverse[m]);
     for (int k = 0; k < 3; ++k)
     {
-      grad[k] = grad[k] * f + product * g[k];
+      grad[k] = grad[k] * g + product * scale * v[k];
     }
-    product *= f;
+    product *= g;
     const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
     if (distance < best)
     {
