@@ -44,7 +44,8 @@
  * data `Normals`, `Factor` (index of the nearest atom) and `AtomicNumber`, and field data: `PiSurfaceModel`
  * (the Global model as .pisurf JSON, for molecules up to 10000 atoms, so that Pi Ray
  * Cast works downstream), `PiMoleculeCenters` and `PiMoleculeRadii` (the atoms, compact),
- * `SurfaceArea` and `EnclosedVolume` of the mesh (one-piece runs only).
+ * `SurfaceArea` and `EnclosedVolume` of the mesh (one-piece runs only; the volume is
+ * Σ p0·(p1 × p2)/6 over the triangles, which face ∇F: the volume of {F < 0} inside it).
  *
  * Pieces (ParaView's MPI mode): every piece reads the whole molecule (piece 0 of 1 of
  * the input) and meshes its own slab of the grid; the union of the pieces is the

@@ -42,7 +42,9 @@
  *   the Global one. The product is 1 far from the molecule, so the level must be below
  *   1: level = r/(1 + r), which is r to first order as r → 0 (the same limit of the
  *   union of spheres) and 1/2 at the paper's r = 1. Cost per point: the atoms within
- *   ρ_i, independent of the molecule's size.
+ *   ρ_i, independent of the molecule's size. The mesher's boxes are evaluated at once
+ *   (EvaluateBox: each atom visits only the points within its ρ, same bits as point by
+ *   point) and its vertices on the atoms that reach their edge (RefineEdge).
  *
  * Radius tables (Å, by atomic number; 0 where the table has no value):
  *   Bondi: A. Bondi, "van der Waals Volumes and Radii", J. Phys. Chem. 68 (1964) 441–451
