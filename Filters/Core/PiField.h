@@ -69,32 +69,20 @@ public:
   /// can share work between the points of a box (a molecule: the atoms near the box are
   /// found once, and each atom visits only the points it reaches) answers; the default
   /// says false and the mesher evaluates point by point.
-  virtual bool EvaluateBox(const double origin[3], const double spacing[3], const int first[3],
-    const int last[3], long strideY, long strideZ, double* values) const
+  virtual bool EvaluateBox(const double* /*origin*/, const double* /*spacing*/,
+    const int* /*first*/, const int* /*last*/, long /*strideY*/, long /*strideZ*/,
+    double* /*values*/) const
   {
-    (void)origin;
-    (void)spacing;
-    (void)first;
-    (void)last;
-    (void)strideY;
-    (void)strideZ;
-    (void)values;
     return false;
   }
 
   /// OffOuterSide at the same grid points as EvaluateBox, written as 1 (true) or 0 to
   /// flags[(k − first[2])·strideZ + (j − first[1])·strideY + (i − first[0])], each equal
   /// to OffOuterSide at that point. The default says false (not answered).
-  virtual bool OffOuterSideBox(const double origin[3], const double spacing[3],
-    const int first[3], const int last[3], long strideY, long strideZ, unsigned char* flags) const
+  virtual bool OffOuterSideBox(const double* /*origin*/, const double* /*spacing*/,
+    const int* /*first*/, const int* /*last*/, long /*strideY*/, long /*strideZ*/,
+    unsigned char* /*flags*/) const
   {
-    (void)origin;
-    (void)spacing;
-    (void)first;
-    (void)last;
-    (void)strideY;
-    (void)strideZ;
-    (void)flags;
     return false;
   }
 
@@ -117,16 +105,9 @@ public:
   /// that formula) and whether x is OffOuterSide. A field that can restrict itself to
   /// the segment once (a molecule: the few atoms that reach it) answers in a fraction of
   /// the time of repeated Evaluate calls; the default says false.
-  virtual bool RefineEdge(const double a[3], const double b[3], double va, double vb, int from,
-    double tolerance, EdgeVertex& vertex) const
+  virtual bool RefineEdge(const double* /*a*/, const double* /*b*/, double /*va*/,
+    double /*vb*/, int /*from*/, double /*tolerance*/, EdgeVertex& /*vertex*/) const
   {
-    (void)a;
-    (void)b;
-    (void)va;
-    (void)vb;
-    (void)from;
-    (void)tolerance;
-    (void)vertex;
     return false;
   }
 };

@@ -171,6 +171,98 @@ inline double Weight(double u, double& derivative)
   derivative = -30.0 * u * u * (1.0 - u) * (1.0 - u);
   return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
 }
+// The Local factor as a function of f = d² − R²: g = f·w + (1 − w) with u = f/(ρ² − R²)
+// clamped to [0, 1], without branches (g = f exactly inside the sphere, 1 exactly
+// beyond ρ), and its derivative dg/df = w + (f − 1) w'(u)/(ρ² − R²).
+inline double LocalFactor(double f, double inverseSpan, double& slope)
+{
+  double u = f * inverseSpan;
+  u = u > 0.0 ? u : 0.0;
+  u = u < 1.0 ? u : 1.0;
+  const double uu = u * u;
+  const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
+  const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
+  slope = w + (f - 1.0) * dw * inverseSpan;
+  return f * w + (1.0 - w);
+}
+
+// The grid points of a box query (EvaluateBox, OffOuterSideBox): how many per axis, the
+// box they span and their coordinates, computed as the mesher computes them (origin +
+// index·spacing). The coordinates live in a per-thread buffer until the next query.
+struct BoxPoints
+{
+  int N[3];
+  int First0;
+  double Origin0, InverseSpacing0;
+  double Box[6];
+  const double* X[3];
+
+  bool Set(const double origin[3], const double spacing[3], const int first[3], const int last[3])
+  {
+    thread_local std::vector<double> coordinates;
+    size_t total = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->N[a] = last[a] - first[a] + 1;
+      if (this->N[a] <= 0 || !(spacing[a] > 0))
+      {
+        return false;
+      }
+      this->Box[2 * a] = origin[a] + first[a] * spacing[a];
+      this->Box[2 * a + 1] = origin[a] + last[a] * spacing[a];
+      total += this->N[a];
+    }
+    coordinates.resize(total);
+    double* x = coordinates.data();
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int i = 0; i < this->N[a]; ++i)
+      {
+        x[i] = origin[a] + (first[a] + i) * spacing[a];
+      }
+      this->X[a] = x;
+      x += this->N[a];
+    }
+    this->First0 = first[0];
+    this->Origin0 = origin[0];
+    this->InverseSpacing0 = 1.0 / spacing[0];
+    return true;
+  }
+
+  // Calls visit(k, j, lo, hi, v1, v2) for each row (j, k) of points (along x) that may
+  // come within sqrt(r2) of c: v1, v2 = the row's y and z minus c's, [lo, hi] the
+  // points of the row within that distance, widened by two points on each side (the
+  // caller's exact test decides). A row is skipped only when v1² + v2² >= r2, which
+  // (v0² + v1²) + v2² then is too in floating point (rounding is monotone).
+  template <class Visit>
+  void ForRowsNear(const double c[3], double r2, Visit&& visit) const
+  {
+    for (int k = 0; k < this->N[2]; ++k)
+    {
+      const double v2 = this->X[2][k] - c[2];
+      if (v2 * v2 >= r2)
+      {
+        continue;
+      }
+      for (int j = 0; j < this->N[1]; ++j)
+      {
+        const double v1 = this->X[1][j] - c[1];
+        const double across = v1 * v1 + v2 * v2;
+        if (across >= r2)
+        {
+          continue;
+        }
+        const double half = std::sqrt(r2 - across);
+        // The conversions truncate: two points of margin cover them.
+        const int lo = std::max(0,
+          static_cast<int>((c[0] - half - this->Origin0) * this->InverseSpacing0) - 2 - this->First0);
+        const int hi = std::min(this->N[0] - 1,
+          static_cast<int>((c[0] + half - this->Origin0) * this->InverseSpacing0) + 2 - this->First0);
+        visit(k, j, lo, hi, v1, v2);
+      }
+    }
+  }
+};
 }
 
 double BondiRadius(int z)
@@ -988,47 +1080,19 @@ void MoleculeField::EvaluateVertex(
 bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   const int first[3], const int last[3], long strideY, long strideZ, double* values) const
 {
-  if (this->Settings.Mode != MoleculeMode::Local)
+  BoxPoints points;
+  if (this->Settings.Mode != MoleculeMode::Local || !points.Set(origin, spacing, first, last))
   {
     return false;
   }
-  int n[3];
-  double box[6];
-  for (int a = 0; a < 3; ++a)
-  {
-    n[a] = last[a] - first[a] + 1;
-    if (n[a] <= 0 || !(spacing[a] > 0))
-    {
-      return false;
-    }
-    box[2 * a] = origin[a] + first[a] * spacing[a];
-    box[2 * a + 1] = origin[a] + last[a] * spacing[a];
-  }
-  // The points' coordinates, as the mesher computes them.
-  thread_local std::vector<double> coordinates;
-  coordinates.resize(size_t(n[0]) + n[1] + n[2]);
-  double* xs = coordinates.data();
-  double* ys = xs + n[0];
-  double* zs = ys + n[1];
-  for (int i = 0; i < n[0]; ++i)
-  {
-    xs[i] = origin[0] + (first[0] + i) * spacing[0];
-  }
-  for (int j = 0; j < n[1]; ++j)
-  {
-    ys[j] = origin[1] + (first[1] + j) * spacing[1];
-  }
-  for (int k = 0; k < n[2]; ++k)
-  {
-    zs[k] = origin[2] + (first[2] + k) * spacing[2];
-  }
+  const int* n = points.N;
   // Every atom that reaches a point of the box (with a slack far above rounding: an
   // extra atom multiplies by exactly 1 where it is skipped), in ascending order as in
   // the cells' lists, so that each point's product is Evaluate's, factor by factor.
   thread_local std::vector<int> atoms;
   atoms.clear();
-  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
-    if (Distance2ToBox(&this->Centers[3 * i], box) < this->Rho2[i] * (1.0 + 1e-9))
+  this->ForAtomsNear(points.Box, this->MaxReach, [&](int i) {
+    if (Distance2ToBox(&this->Centers[3 * i], points.Box) < this->Rho2[i] * (1.0 + 1e-9))
     {
       atoms.push_back(i);
     }
@@ -1042,50 +1106,26 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
       std::fill_n(values + k * strideZ + j * strideY, n[0], 1.0);
     }
   }
-  const double* centers = this->Centers.data();
-  const double inverse0 = 1.0 / spacing[0];
+  const double* xs = points.X[0];
   for (int i : atoms)
   {
-    const double* c = centers + 3 * i;
+    const double* c = &this->Centers[3 * i];
     const double rho2 = this->Rho2[i], r2 = this->R2[i], inverse = this->InvSpan[i];
-    for (int k = 0; k < n[2]; ++k)
-    {
-      const double v2 = zs[k] - c[2];
-      if (v2 * v2 >= rho2)
+    points.ForRowsNear(c, rho2, [&](int k, int j, int lo, int hi, double v1, double v2) {
+      double* row = values + k * strideZ + j * strideY;
+      for (int m = lo; m <= hi; ++m)
       {
-        continue;
+        // ComputeLocal's arithmetic, term by term, its branches as selects (the
+        // multiply by exactly 1 where the atom is skipped changes nothing).
+        const double v0 = xs[m] - c[0];
+        const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
+        const double f = d2 - r2;
+        const double u = f * inverse;
+        const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+        const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
+        row[m] *= d2 < rho2 ? g : 1.0;
       }
-      for (int j = 0; j < n[1]; ++j)
-      {
-        const double v1 = ys[j] - c[1];
-        // (v0² + v1²) + v2² >= v1² + v2² in floating point too (rounding is monotone):
-        // no point of the row is within ρ.
-        const double across = v1 * v1 + v2 * v2;
-        if (across >= rho2)
-        {
-          continue;
-        }
-        // The points of the row within ρ, widened by two points on each side (the
-        // conversion truncates); the exact test below decides.
-        const double half = std::sqrt(rho2 - across);
-        const int lo = std::max(0, static_cast<int>((c[0] - half - origin[0]) * inverse0) - 2 - first[0]);
-        const int hi =
-          std::min(n[0] - 1, static_cast<int>((c[0] + half - origin[0]) * inverse0) + 2 - first[0]);
-        double* row = values + k * strideZ + j * strideY;
-        for (int m = lo; m <= hi; ++m)
-        {
-          // ComputeLocal's arithmetic, term by term, its branches as selects (the
-          // multiply by exactly 1 where the atom is skipped changes nothing).
-          const double v0 = xs[m] - c[0];
-          const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-          const double f = d2 - r2;
-          const double u = f * inverse;
-          const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-          const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
-          row[m] *= d2 < rho2 ? g : 1.0;
-        }
-      }
-    }
+    });
   }
   const double level = this->Level;
   for (int k = 0; k < n[2]; ++k)
@@ -1105,18 +1145,12 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
 bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing[3],
   const int first[3], const int last[3], long strideY, long strideZ, unsigned char* flags) const
 {
-  int n[3];
-  double box[6];
-  for (int a = 0; a < 3; ++a)
+  BoxPoints points;
+  if (!points.Set(origin, spacing, first, last))
   {
-    n[a] = last[a] - first[a] + 1;
-    if (n[a] <= 0 || !(spacing[a] > 0))
-    {
-      return false;
-    }
-    box[2 * a] = origin[a] + first[a] * spacing[a];
-    box[2 * a + 1] = origin[a] + last[a] * spacing[a];
+    return false;
   }
+  const int* n = points.N;
   for (int k = 0; k < n[2]; ++k)
   {
     for (int j = 0; j < n[1]; ++j)
@@ -1128,47 +1162,13 @@ bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing
   {
     return true; // OffOuterSide is false everywhere
   }
-  thread_local std::vector<double> coordinates;
-  coordinates.resize(size_t(n[0]) + n[1] + n[2]);
-  double* xs = coordinates.data();
-  double* ys = xs + n[0];
-  double* zs = ys + n[1];
-  for (int i = 0; i < n[0]; ++i)
-  {
-    xs[i] = origin[0] + (first[0] + i) * spacing[0];
-  }
-  for (int j = 0; j < n[1]; ++j)
-  {
-    ys[j] = origin[1] + (first[1] + j) * spacing[1];
-  }
-  for (int k = 0; k < n[2]; ++k)
-  {
-    zs[k] = origin[2] + (first[2] + k) * spacing[2];
-  }
-  this->ForAtomsNear(box, this->MaxRadius, [&](int i) {
+  const double* xs = points.X[0];
+  this->ForAtomsNear(points.Box, this->MaxRadius, [&](int i) {
     const double* c = &this->Centers[3 * i];
     const double r2 = this->Radii[i] * this->Radii[i];
-    if (!(Distance2ToBox(c, box) < r2 * (1.0 + 1e-9)))
+    if (Distance2ToBox(c, points.Box) < r2 * (1.0 + 1e-9))
     {
-      return false;
-    }
-    for (int k = 0; k < n[2]; ++k)
-    {
-      const double dz = zs[k] - c[2];
-      for (int j = 0; j < n[1]; ++j)
-      {
-        const double dy = ys[j] - c[1];
-        // (dx² + dy²) + dz² >= dy² + dz² in floating point too.
-        const double across = dy * dy + dz * dz;
-        if (across >= r2)
-        {
-          continue;
-        }
-        const double half = std::sqrt(r2 - across);
-        const int lo = std::max(0,
-          static_cast<int>(std::floor((c[0] - half - origin[0]) / spacing[0])) - 1 - first[0]);
-        const int hi = std::min(n[0] - 1,
-          static_cast<int>(std::ceil((c[0] + half - origin[0]) / spacing[0])) + 1 - first[0]);
+      points.ForRowsNear(c, r2, [&](int k, int j, int lo, int hi, double dy, double dz) {
         unsigned char* row = flags + k * strideZ + j * strideY;
         for (int m = lo; m <= hi; ++m)
         {
@@ -1176,7 +1176,7 @@ bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing
           const double dx = xs[m] - c[0];
           row[m] |= dx * dx + dy * dy + dz * dz < r2;
         }
-      }
+      });
     }
     return false;
   });
@@ -1294,9 +1294,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
       consider(i);
     }
   }
-  // F on the segment and its derivative in s, without branches: u clamped to [0, 1]
-  // gives w = 1 inside the sphere (g = f exactly, as f·w + (1 − w)) and w = 0 beyond ρ
-  // (g = 1 exactly), the same g as AtomFactor.
+  // F on the segment and its derivative in s (LocalFactor: the same g as AtomFactor,
+  // without branches).
   const double delta = b[axis] - a[axis];
   const double level = this->Level;
   // Each term's g and dg/ds at s (vectorized), then their product and its derivative
@@ -1306,15 +1305,9 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     for (int m = 0; m < count; ++m)
     {
       const double v = W[m] + shift;
-      const double f = K[m] + v * v - R2[m];
-      double u = f * Inverse[m];
-      u = u > 0.0 ? u : 0.0;
-      u = u < 1.0 ? u : 1.0;
-      const double uu = u * u;
-      const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
-      const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
-      G[m] = f * w + (1.0 - w);
-      DG[m] = (w + (f - 1.0) * dw * Inverse[m]) * 2.0 * v * delta;
+      double slope;
+      G[m] = LocalFactor(K[m] + v * v - R2[m], Inverse[m], slope);
+      DG[m] = slope * 2.0 * v * delta;
     }
     double p0 = 1.0, p1 = 1.0, d0 = 0.0, d1 = 0.0;
     int m = 0;
@@ -1446,19 +1439,12 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     {
       continue;
     }
-    // g and ∇g = 2(w + (f − 1) w'(u)/span) v, as AtomFactor, with the inverse span.
-    const double f = d2 - R2[m];
-    double u = f * Inverse[m];
-    u = u > 0.0 ? u : 0.0;
-    u = u < 1.0 ? u : 1.0;
-    const double uu = u * u;
-    const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
-    const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
-    const double g = f * w + (1.0 - w);
-    const double scale = 2.0 * (w + (f - 1.0) * dw * Inverse[m]);
+    // g and ∇g = (dg/df)·2v, as AtomFactor.
+    double slope;
+    const double g = LocalFactor(d2 - R2[m], Inverse[m], slope);
     for (int k = 0; k < 3; ++k)
     {
-      grad[k] = grad[k] * g + product * scale * v[k];
+      grad[k] = grad[k] * g + product * 2.0 * slope * v[k];
     }
     product *= g;
     const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
