@@ -36,6 +36,7 @@
 #include "vtkStringArray.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -1233,13 +1234,36 @@ struct VertexAttributes
   void operator()(vtkIdType begin, vtkIdType end)
   {
     const int* d = this->G->Dims;
+    // Edge keys of grids below 2^32 keys decode with 32-bit divisions (several times
+    // faster than 64-bit ones on common CPUs).
+    const bool narrow = 3.0 * d[0] * d[1] * d[2] < 4294967296.0;
+    double* xyz = vtkDoubleArray::FastDownCast(this->Points->GetData())->GetPointer(0);
+    float* normals = this->Normals->GetPointer(0);
+    int* factors = this->Factor->GetPointer(0);
+    double* magnitudes = this->GradientMagnitude ? this->GradientMagnitude->GetPointer(0) : nullptr;
     for (vtkIdType id = begin; id < end; ++id)
     {
       const vtkIdType key = (*this->VertexEdge)[id];
-      const int axis = static_cast<int>(key % 3);
-      const vtkIdType p = key / 3;
-      const int idx[3] = { static_cast<int>(p % d[0]), static_cast<int>((p / d[0]) % d[1]),
-        static_cast<int>(p / (vtkIdType(d[0]) * d[1])) };
+      int axis, idx[3];
+      if (narrow)
+      {
+        const std::uint32_t k32 = static_cast<std::uint32_t>(key);
+        std::uint32_t p = k32 / 3;
+        axis = static_cast<int>(k32 - 3 * p);
+        const std::uint32_t row = p / static_cast<std::uint32_t>(d[0]);
+        idx[0] = static_cast<int>(p - row * static_cast<std::uint32_t>(d[0]));
+        const std::uint32_t plane = row / static_cast<std::uint32_t>(d[1]);
+        idx[1] = static_cast<int>(row - plane * static_cast<std::uint32_t>(d[1]));
+        idx[2] = static_cast<int>(plane);
+      }
+      else
+      {
+        axis = static_cast<int>(key % 3);
+        const vtkIdType p = key / 3;
+        idx[0] = static_cast<int>(p % d[0]);
+        idx[1] = static_cast<int>((p / d[0]) % d[1]);
+        idx[2] = static_cast<int>(p / (vtkIdType(d[0]) * d[1]));
+      }
       double a[3], b[3];
       for (int k = 0; k < 3; ++k)
       {
@@ -1248,6 +1272,8 @@ struct VertexAttributes
       }
       double t = (*this->VertexT)[id];
       const double va = (*this->VertexEnds)[2 * id], vb = (*this->VertexEnds)[2 * id + 1];
+      double x[3], n[3], gradientNorm;
+      int nearest;
       // The field restricted to the edge, in one call: Refine's root of a strict bracket,
       // or the crossing nearest the end t where the ends have one sign (a thin wall),
       // and EvaluateVertex's answers there. A root off the outer side takes the general
@@ -1261,42 +1287,35 @@ struct VertexAttributes
           a, b, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
         !(this->PositiveEnvelope && fast.OffOuterSide))
       {
-        double x[3];
         for (int k = 0; k < 3; ++k)
         {
           x[k] = a[k] + fast.S * (b[k] - a[k]);
+          n[k] = fast.Normal[k];
         }
-        this->Points->SetPoint(id, x);
-        const float nf[3] = { static_cast<float>(fast.Normal[0]),
-          static_cast<float>(fast.Normal[1]), static_cast<float>(fast.Normal[2]) };
-        this->Normals->SetTypedTuple(id, nf);
-        this->Factor->SetValue(id, fast.Nearest);
-        if (this->GradientMagnitude)
-        {
-          this->GradientMagnitude->SetValue(id, fast.GradientNorm);
-        }
-        continue;
+        gradientNorm = fast.GradientNorm;
+        nearest = fast.Nearest;
       }
-      if (this->Project)
+      else
       {
-        t = this->Refine(a, b, t, (*this->VertexEnds)[2 * id], (*this->VertexEnds)[2 * id + 1]);
+        if (this->Project)
+        {
+          t = this->Refine(a, b, t, va, vb);
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          x[k] = a[k] + t * (b[k] - a[k]);
+        }
+        this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
       }
-      double x[3], n[3];
       for (int k = 0; k < 3; ++k)
       {
-        x[k] = a[k] + t * (b[k] - a[k]);
+        xyz[3 * id + k] = x[k];
+        normals[3 * id + k] = static_cast<float>(n[k]);
       }
-      this->Points->SetPoint(id, x);
-      double gradientNorm;
-      int nearest;
-      this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
-      const float nf[3] = { static_cast<float>(n[0]), static_cast<float>(n[1]),
-        static_cast<float>(n[2]) };
-      this->Normals->SetTypedTuple(id, nf);
-      this->Factor->SetValue(id, nearest);
-      if (this->GradientMagnitude)
+      factors[id] = nearest;
+      if (magnitudes)
       {
-        this->GradientMagnitude->SetValue(id, gradientNorm);
+        magnitudes[id] = gradientNorm;
       }
     }
   }
