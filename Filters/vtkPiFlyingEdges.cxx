@@ -1752,16 +1752,23 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   lap("vertices");
 
   // Triangles face ∇F, like the Normals, so renderers light the side they see: the
-  // marching-cubes table winds them the other way for "inside = positive".
+  // marching-cubes table winds them the other way for "inside = positive". The offsets
+  // are written here too: vtkCellArray takes both arrays as they are (SetData with a
+  // cell size would copy the connectivity and fill the offsets on one thread).
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(triangles + 1);
   vtkIdType* tri = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, triangles, [tri](vtkIdType begin, vtkIdType end) {
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkSMPTools::For(0, triangles, [tri, offset](vtkIdType begin, vtkIdType end) {
     for (vtkIdType t = begin; t < end; ++t)
     {
       std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+      offset[t] = 3 * t;
     }
   });
+  offset[triangles] = 3 * triangles;
   vtkNew<vtkCellArray> polys;
-  polys->SetData(3, connectivity);
+  polys->SetData(offsets, connectivity);
   output->SetPoints(points);
   output->SetPolys(polys);
   output->GetPointData()->SetNormals(normals);
