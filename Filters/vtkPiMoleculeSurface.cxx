@@ -387,11 +387,11 @@ int vtkPiMoleculeSurface::RequestData(
     {
       bounds[a] = atomBox[a] + (a % 2 ? margin : -margin);
     }
-    field = std::make_shared<pisurf::MoleculeField>(centers, radii, settings, bounds);
     if (this->Mode == LOCAL)
     {
-      break;
+      break; // F = 1 − level > 0 on the boundary: nothing to check (the field is built below)
     }
+    field = std::make_shared<pisurf::MoleculeField>(centers, radii, settings, bounds);
     bool positive = true;
     for (int a = 0; a < 3 && positive; ++a)
     {
