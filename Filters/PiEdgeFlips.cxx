@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiEdgeFlips.h"
+#include "PiBuffer.h"
 #include "PiTiming.h"
 
 #include "vtkSMPTools.h"
@@ -15,25 +16,7 @@
 
 namespace
 {
-// An array left uninitialized when allocated (the passes that fill it run in
-// parallel, so its pages are first touched by the threads, not zeroed by one).
-template <typename T>
-class Buffer
-{
-public:
-  void Allocate(size_t n)
-  {
-    this->Data.reset(new T[n]);
-    this->Size = n;
-  }
-  bool Empty() const { return this->Size == 0; }
-  T& operator[](size_t k) { return this->Data[k]; }
-  const T& operator[](size_t k) const { return this->Data[k]; }
-
-private:
-  std::unique_ptr<T[]> Data;
-  size_t Size = 0;
-};
+using pisurf::Buffer;
 
 // Half-edge h = 3·t + k of triangle t runs from its corner k to its corner k + 1.
 template <typename Id>

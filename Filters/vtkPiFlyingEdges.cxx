@@ -5,6 +5,7 @@
 
 #include "PiLastValidOutput.h"
 
+#include "PiBuffer.h"
 #include "PiField.h"
 #include "PiModel.h"
 #include "PiProduct.h"
@@ -188,7 +189,6 @@ constexpr int BlockPoints = BlockCells + 1;
 constexpr double ValueLimit = 1e300;
 
 using pisurf::mc::Corner;
-using pisurf::mc::Edge;
 
 struct Grid
 {
@@ -888,9 +888,9 @@ struct Contour
   unsigned short* EdgeKey;
   std::vector<vtkIdType>* VertexCount;   // per active block: count, then first id
   std::vector<vtkIdType>* TriangleCount; // per active block: count, then first index
-  std::vector<vtkIdType>* VertexEdge;    // per vertex: point id · 3 + axis
-  std::vector<double>* VertexT;          // per vertex: crossing parameter along the edge
-  std::vector<double>* VertexEnds;       // per vertex: F at the edge's two end points
+  pisurf::Buffer<vtkIdType>* VertexEdge; // per vertex: point id · 3 + axis
+  pisurf::Buffer<double>* VertexT;       // per vertex: crossing parameter along the edge
+  pisurf::Buffer<double>* VertexEnds;    // per vertex: F at the edge's two end points
   vtkIdType* TriangleIds;
   Mode Pass = Count;
   int SlabBegin = 0, SlabEnd = 1 << 30; // this piece's block layers along z
@@ -1040,18 +1040,9 @@ struct Contour
               {
                 for (int m = 0; m < 3; ++m)
                 {
-                  const int* ends = Edge[list[e + m]];
-                  int lo[3], axis = 0;
-                  for (int a = 0; a < 3; ++a)
-                  {
-                    lo[a] = std::min(Corner[ends[0]][a], Corner[ends[1]][a]);
-                    if (Corner[ends[0]][a] != Corner[ends[1]][a])
-                    {
-                      axis = a;
-                    }
-                  }
-                  this->TriangleIds[3 * triangle + m] = this->VertexOf(
-                    i + lo[0], j + lo[1], k + lo[2], axis, static_cast<int>(s), table.data());
+                  const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + m]];
+                  this->TriangleIds[3 * triangle + m] = this->VertexOf(i + edge.Lo[0],
+                    j + edge.Lo[1], k + edge.Lo[2], edge.Axis, static_cast<int>(s), table.data());
                 }
               }
             }
@@ -1077,9 +1068,9 @@ struct VertexAttributes
 {
   const Evaluator* Kernel;
   const Grid* G;
-  const std::vector<vtkIdType>* VertexEdge;
-  const std::vector<double>* VertexT;
-  const std::vector<double>* VertexEnds;
+  const pisurf::Buffer<vtkIdType>* VertexEdge;
+  const pisurf::Buffer<double>* VertexT;
+  const pisurf::Buffer<double>* VertexEnds;
   vtkPoints* Points;
   vtkFloatArray* Normals;
   vtkIntArray* Factor;
@@ -1646,8 +1637,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // write them.
   const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
   std::vector<vtkIdType> vertexCount(activeCount + 1, 0), triangleCount(activeCount + 1, 0);
-  std::vector<vtkIdType> vertexEdge;
-  std::vector<double> vertexT, vertexEnds;
+  // (not initialized on allocation: the Edges pass writes every entry)
+  pisurf::Buffer<vtkIdType> vertexEdge;
+  pisurf::Buffer<double> vertexT, vertexEnds;
   // This piece's slab of block layers along z (all of them for one piece).
   const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
   const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
@@ -1677,9 +1669,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   triangleCount[activeCount] = triangles;
   std::unique_ptr<unsigned short[]> edgeKeys(new unsigned short[std::max<vtkIdType>(vertices, 1)]);
   contour.EdgeKey = edgeKeys.get();
-  vertexEdge.resize(vertices);
-  vertexT.resize(vertices);
-  vertexEnds.resize(2 * vertices);
+  vertexEdge.Allocate(vertices);
+  vertexT.Allocate(vertices);
+  vertexEnds.Allocate(2 * vertices);
   vtkNew<vtkIdTypeArray> connectivity;
   connectivity->SetNumberOfValues(3 * triangles);
   contour.TriangleIds = connectivity->GetPointer(0);

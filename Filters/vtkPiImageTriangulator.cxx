@@ -46,8 +46,6 @@ vtkStandardNewMacro(vtkPiImageTriangulator);
 
 namespace
 {
-using pisurf::mc::Corner;
-using pisurf::mc::Edge;
 
 // A view as vtkPiRayCaster describes it in `PiRayViews`.
 struct View
@@ -782,25 +780,6 @@ void Triangulation::RunLattice(const Lattice& L)
   // per work item; vertices are the crossings on the cell's edges, looked up on their
   // lattice lines, or computed on the edge where no line carries one.
   const auto& polygons = PolygonTable();
-  // The marching-cubes edges as lattice edges: axis and lower corner.
-  struct EdgeOfCell
-  {
-    int Axis;
-    int Low[3];
-  };
-  EdgeOfCell edges[12];
-  for (int e = 0; e < 12; ++e)
-  {
-    const int* ends = Edge[e];
-    for (int k = 0; k < 3; ++k)
-    {
-      edges[e].Low[k] = std::min(Corner[ends[0]][k], Corner[ends[1]][k]);
-      if (Corner[ends[0]][k] != Corner[ends[1]][k])
-      {
-        edges[e].Axis = k;
-      }
-    }
-  }
   std::vector<std::vector<std::int64_t>> rowTriangles(ny - 1);
   std::vector<std::vector<Computed>> rowPoints(ny - 1);
   vtkSMPTools::For(0, ny - 1, [&](vtkIdType jb, vtkIdType je) {
@@ -915,8 +894,9 @@ void Triangulation::RunLattice(const Lattice& L)
           bool distinct = true;
           for (int k = 0; k < size; ++k)
           {
-            const EdgeOfCell& x = edges[polygon[k]];
-            v[k] = vertex(x.Axis, i + x.Low[0], j + x.Low[1], m + x.Low[2], local[k]);
+            // The marching-cubes edge as a lattice edge: axis and lower corner.
+            const pisurf::mc::EdgeStart& x = pisurf::mc::EdgeStarts.Of[polygon[k]];
+            v[k] = vertex(x.Axis, i + x.Lo[0], j + x.Lo[1], m + x.Lo[2], local[k]);
             for (int q = 0; q < k; ++q)
             {
               distinct = distinct && v[q].Key != v[k].Key;
