@@ -45,6 +45,7 @@ constexpr vtkIdType MaximumJsonAtoms = 10000;
 constexpr double AutomaticSpacing = 0.25;
 constexpr double AutomaticMaximumPoints = 16777216.0; // 2^24
 constexpr double MaximumExtent = 1e6;                  // Å
+constexpr double MinimumInfluenceRadius = 1e-3;          // Å
 // Global mode: atoms x far-field cells, about a minute of sums on two cores.
 constexpr double MaximumGlobalCost = 1e10;
 }
@@ -178,9 +179,12 @@ int vtkPiMoleculeSurface::RequestData(
     vtkErrorMacro(<< "Blending must be a finite number >= 0, not " << this->Blending);
     return 0;
   }
-  if (!std::isfinite(this->InfluenceRadius) || this->InfluenceRadius <= 0)
+  // Below 0.001 Å the factors jump from the sphere's value to 1 within the rounding of
+  // the grid's roots (at 1e-20 Å, ρ = R in doubles): no blend is left to mesh.
+  if (!std::isfinite(this->InfluenceRadius) || !(this->InfluenceRadius >= MinimumInfluenceRadius))
   {
-    vtkErrorMacro(<< "InfluenceRadius must be a finite number > 0, not " << this->InfluenceRadius);
+    vtkErrorMacro(<< "InfluenceRadius must be a finite number >= " << MinimumInfluenceRadius
+                  << " Å, not " << this->InfluenceRadius);
     return 0;
   }
   if (!std::isfinite(this->Spacing) || this->Spacing < 0)

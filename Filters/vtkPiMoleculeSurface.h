@@ -117,7 +117,7 @@ public:
 
   ///@{
   /// Local mode: distance beyond an atom's sphere where its factor becomes 1 (default
-  /// 2 Å, > 0).
+  /// 2 Å, at least 0.001 Å: below, the factor would jump from the sphere's value to 1).
   vtkSetMacro(InfluenceRadius, double);
   vtkGetMacro(InfluenceRadius, double);
   ///@}

@@ -182,7 +182,9 @@ inline double LocalFactor(double f, double inverseSpan, double& slope)
   const double uu = u * u;
   const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
   const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
-  slope = w + (f - 1.0) * dw * inverseSpan;
+  // (dw = 0 at both ends of [0, 1]: no 0·∞ where an influence radius below rounding
+  // makes the span 0.)
+  slope = w + (dw == 0.0 ? 0.0 : (f - 1.0) * dw * inverseSpan);
   return f * w + (1.0 - w);
 }
 
@@ -1386,7 +1388,10 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
       break;
     }
     narrow(s, f);
-    double next = s - f / derivative;
+    // Newton's step on ln P − ln level where P = F + level > 0 (a product of factors is
+    // closer to a power than to a line), on F elsewhere.
+    const double P = f + level;
+    double next = P > 0 && level > 0 ? s - P * std::log(P / level) / derivative : s - f / derivative;
     if (!(next > lo && next < hi))
     {
       next = 0.5 * (lo + hi);

@@ -776,10 +776,17 @@ std::vector<Case> Catalogue()
   add("molsurface.negative_blending", "Blending must be a finite number >= 0", [] {
     return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetBlending(-1); });
   });
-  add("molsurface.zero_influence", "InfluenceRadius must be a finite number > 0", [] {
+  add("molsurface.zero_influence", "InfluenceRadius must be a finite number >= 0.001", [] {
     return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) {
       s->SetMode(vtkPiMoleculeSurface::LOCAL);
       s->SetInfluenceRadius(0);
+    });
+  });
+  // rho = R in doubles: the factor would jump from f to 1 on the sphere.
+  add("molsurface.tiny_influence", "InfluenceRadius must be a finite number >= 0.001", [] {
+    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) {
+      s->SetMode(vtkPiMoleculeSurface::LOCAL);
+      s->SetInfluenceRadius(1e-20);
     });
   });
   add("molsurface.negative_spacing", "Spacing must be 0 (automatic) or a positive", [] {
