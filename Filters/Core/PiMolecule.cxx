@@ -277,19 +277,51 @@ double BatsanovRadius(int z)
   return Lookup(BatsanovTable, z);
 }
 
-struct MoleculeField::Cell
+// Global mode: the far atoms of a cell, T(p) = L0 + G·d + ½ dᵀHd (d = p − Center) the
+// Taylor polynomial of their log-product about the cell's centre, Bound the bound of
+// its error over the cell, FarLogMin a lower bound of the log-product over the cell's
+// box grown by FarMargin.
+struct MoleculeField::FarField
 {
-  std::vector<int> Near;
-  // Local: the atoms whose sphere (radius R) meets the cell's box, ascending.
-  std::vector<int> Inner;
   bool HasFar = false;
   double Center[3] = { 0, 0, 0 };
   double L0 = 0.0;
   double G[3] = { 0, 0, 0 };
   double H[6] = { 0, 0, 0, 0, 0, 0 }; // xx yy zz xy xz yz
   double Bound = 0.0;
-  // Global: a lower bound of Σ_far ln f_j over the cell's box grown by FarMargin.
   double FarLogMin = 0.0;
+
+  double Log(const double p[3]) const
+  {
+    const double d[3] = { p[0] - this->Center[0], p[1] - this->Center[1], p[2] - this->Center[2] };
+    const double* h = this->H;
+    return this->L0 + this->G[0] * d[0] + this->G[1] * d[1] + this->G[2] * d[2] +
+      0.5 * (h[0] * d[0] * d[0] + h[1] * d[1] * d[1] + h[2] * d[2] * d[2]) + h[3] * d[0] * d[1] +
+      h[4] * d[0] * d[2] + h[5] * d[1] * d[2];
+  }
+  void Gradient(const double p[3], double g[3]) const
+  {
+    const double d[3] = { p[0] - this->Center[0], p[1] - this->Center[1], p[2] - this->Center[2] };
+    const double* h = this->H;
+    g[0] = this->G[0] + h[0] * d[0] + h[3] * d[1] + h[4] * d[2];
+    g[1] = this->G[1] + h[3] * d[0] + h[1] * d[1] + h[5] * d[2];
+    g[2] = this->G[2] + h[4] * d[0] + h[5] * d[1] + h[2] * d[2];
+  }
+};
+
+struct MoleculeField::Cell
+{
+  std::vector<int> Near;
+  // Local: the atoms whose sphere (radius R) meets the cell's box, ascending.
+  std::vector<int> Inner;
+  // Global: the far field (null in Local mode, where a cell is only its atoms).
+  std::unique_ptr<FarField> Far;
+
+  const FarField& GetFar() const
+  {
+    static const FarField none;
+    return this->Far ? *this->Far : none;
+  }
 };
 
 // Segments that start in a cell and are at most this long use its FarLogMin.
@@ -530,7 +562,6 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   {
     box[2 * a] = this->Origin[a] + c[a] * s;
     box[2 * a + 1] = box[2 * a] + s;
-    cell.Center[a] = box[2 * a] + 0.5 * s;
   }
   // Near atoms: within their reach of the box.
   this->ForAtomsNear(box, this->MaxReach, [&](int i) {
@@ -556,6 +587,12 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   }
   // Far atoms. Those beyond R_j + SuperNear of the cell's supercell come through the
   // supercell's expansion (built once for 4³ cells); the others ("mid") are summed here.
+  cell.Far.reset(new FarField);
+  FarField& far = *cell.Far;
+  for (int a = 0; a < 3; ++a)
+  {
+    far.Center[a] = box[2 * a] + 0.5 * s;
+  }
   const Super& super = this->SuperAt(c);
   std::vector<int> mid, candidates;
   this->ForAtomsNear(super.Box, this->MaxRadius + SuperNear, [&](int i) {
@@ -571,29 +608,29 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
     std::back_inserter(mid));
   const double h = 0.5 * std::sqrt(3.0) * s;
   Expansion local;
-  AddFar(mid, cell.Center, box, h, local);
+  AddFar(mid, far.Center, box, h, local);
   // The supercell's quadratic re-centred on the cell (exact for a quadratic); its bound
   // holds over the supercell, hence over the cell.
-  const double d0[3] = { cell.Center[0] - super.Center[0], cell.Center[1] - super.Center[1],
-    cell.Center[2] - super.Center[2] };
+  const double d0[3] = { far.Center[0] - super.Center[0], far.Center[1] - super.Center[1],
+    far.Center[2] - super.Center[2] };
   const double* H = super.Far.H;
   const double Hd[3] = { H[0] * d0[0] + H[3] * d0[1] + H[4] * d0[2],
     H[3] * d0[0] + H[1] * d0[1] + H[5] * d0[2], H[4] * d0[0] + H[5] * d0[1] + H[2] * d0[2] };
-  cell.L0 = local.L0 + super.Far.L0 + super.Far.G[0] * d0[0] + super.Far.G[1] * d0[1] +
+  far.L0 = local.L0 + super.Far.L0 + super.Far.G[0] * d0[0] + super.Far.G[1] * d0[1] +
     super.Far.G[2] * d0[2] + 0.5 * (d0[0] * Hd[0] + d0[1] * Hd[1] + d0[2] * Hd[2]);
   for (int k = 0; k < 3; ++k)
   {
-    cell.G[k] = local.G[k] + super.Far.G[k] + Hd[k];
+    far.G[k] = local.G[k] + super.Far.G[k] + Hd[k];
   }
   for (int k = 0; k < 6; ++k)
   {
-    cell.H[k] = local.H[k] + H[k];
+    far.H[k] = local.H[k] + H[k];
   }
-  cell.HasFar = local.Count + super.Far.Count > 0;
-  cell.Bound = local.Bound + super.Far.Bound;
-  cell.FarLogMin = local.LogMin + super.Far.LogMin;
+  far.HasFar = local.Count + super.Far.Count > 0;
+  far.Bound = local.Bound + super.Far.Bound;
+  far.FarLogMin = local.LogMin + super.Far.LogMin;
   double seen = this->MaxBound.load();
-  while (cell.Bound > seen && !this->MaxBound.compare_exchange_weak(seen, cell.Bound))
+  while (far.Bound > seen && !this->MaxBound.compare_exchange_weak(seen, far.Bound))
   {
   }
 }
@@ -693,14 +730,11 @@ int MoleculeField::EvaluateApproximateSignAndLog(
     s.Multiply(this->AtomFactor(i, p, nullptr));
   }
   logAbs = s.Log();
-  bound = cell->Bound;
-  if (cell->HasFar)
+  const FarField& far = cell->GetFar();
+  bound = far.Bound;
+  if (far.HasFar)
   {
-    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
-    const double* H = cell->H;
-    logAbs += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
-      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
-      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+    logAbs += far.Log(p);
   }
   return s.M > 0 ? 1 : (s.M < 0 ? -1 : 0);
 }
@@ -757,13 +791,6 @@ double MoleculeField::Compute(const double p[3], double& logAbsF) const
   }
   if (!cell)
   {
-    if (this->Settings.Mode == MoleculeMode::Local)
-    {
-      // Beyond every atom's influence: the product is 1.
-      const double F = 1.0 - this->Level;
-      logAbsF = std::log(std::fabs(F));
-      return F;
-    }
     return this->ComputeExact(p, logAbsF);
   }
   Scaled s;
@@ -771,21 +798,14 @@ double MoleculeField::Compute(const double p[3], double& logAbsF) const
   {
     s.Multiply(this->AtomFactor(i, p, nullptr));
   }
-  if (!cell->HasFar)
+  const FarField& far = cell->GetFar();
+  if (!far.HasFar)
   {
     return Finish(s, this->Level, logAbsF); // every atom that matters is exact
   }
-  double logP, bound;
   double approxLog = s.Log();
-  {
-    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
-    const double* H = cell->H;
-    approxLog += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
-      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
-      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
-    logP = approxLog;
-    bound = cell->Bound;
-  }
+  approxLog += far.Log(p);
+  const double logP = approxLog, bound = far.Bound;
   const double level = this->Level;
   if (s.M == 0.0)
   {
@@ -918,7 +938,7 @@ bool MoleculeField::FirstRoot(
     }
     bound.Multiply(m);
   }
-  double logBound = bound.Log() + (cell->HasFar ? cell->FarLogMin : 0.0);
+  double logBound = bound.Log() + (cell->GetFar().HasFar ? cell->GetFar().FarLogMin : 0.0);
   // Rounding in the minima: a relative 1e-12 per factor, far below the margin asked.
   const double margin = 1e-9 * static_cast<double>(this->Radii.size()) + 1.0;
   if (!(logBound > std::log(this->Level) + margin))
@@ -1049,20 +1069,16 @@ void MoleculeField::EvaluateVertex(
   // ∇P = 2^e e^L (G + m ∇L) with L the far atoms' log-sum.
   double grad[3] = { s.G[0], s.G[1], s.G[2] };
   double logScale = s.E * Ln2;
-  if (cell && cell->HasFar)
+  if (cell && cell->GetFar().HasFar)
   {
-    const double d[3] = { p[0] - cell->Center[0], p[1] - cell->Center[1], p[2] - cell->Center[2] };
-    const double* H = cell->H;
-    const double gl[3] = { cell->G[0] + H[0] * d[0] + H[3] * d[1] + H[4] * d[2],
-      cell->G[1] + H[3] * d[0] + H[1] * d[1] + H[5] * d[2],
-      cell->G[2] + H[4] * d[0] + H[5] * d[1] + H[2] * d[2] };
+    const FarField& far = cell->GetFar();
+    double gl[3];
+    far.Gradient(p, gl);
     for (int k = 0; k < 3; ++k)
     {
       grad[k] += s.M * gl[k];
     }
-    logScale += cell->L0 + cell->G[0] * d[0] + cell->G[1] * d[1] + cell->G[2] * d[2] +
-      0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
-      H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+    logScale += far.Log(p);
   }
   const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
   if (norm == 0.0 || !std::isfinite(norm))

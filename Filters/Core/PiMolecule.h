@@ -151,6 +151,7 @@ public:
   long long GetNumberOfExactEvaluations() const { return this->ExactCount.load(); }
 
 private:
+  struct FarField;
   struct Cell;
   struct Expansion;
   struct Super;
