@@ -1241,7 +1241,7 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   }
   // The atoms reaching the segment, ascending (the two sorted lists merged): per atom
   // its id, the squared distance K across the axis, W = a[axis] − c[axis], R², ρ² and
-  // 1/(ρ² − R²), as arrays (the evaluation below is vectorized over the atoms).
+  // 1/(ρ² − R²), as arrays.
   const std::vector<int>& p = ca->Near;
   const std::vector<int>& q = cb->Near;
   struct Terms
@@ -1317,8 +1317,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   // without branches).
   const double delta = b[axis] - a[axis];
   const double level = this->Level;
-  // Each term's g and dg/ds at s (vectorized), then their product and its derivative
-  // in two interleaved partial products (half the chain of dependent multiplies).
+  // Each term's g and dg/ds at s, then their product and its derivative in two
+  // interleaved partial products (half the chain of dependent multiplies).
   auto phi = [&](double s, double& derivative) {
     const double shift = s * delta;
     for (int m = 0; m < count; ++m)
