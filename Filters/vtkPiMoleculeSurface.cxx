@@ -495,9 +495,24 @@ int vtkPiMoleculeSurface::RequestData(
   });
   mesher->AddObserver(vtkCommand::ErrorEvent, forward);
   mesher->AddObserver(vtkCommand::WarningEvent, forward);
+  // The mesher is most of the time: its progress is ours (from 0.05 to 0.95), and a
+  // cancel of this filter (AbortExecute, ParaView's cancel button) stops it.
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(this);
+  progress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    static_cast<vtkPiMoleculeSurface*>(client)->UpdateProgress(
+      0.05 + 0.9 * *static_cast<double*>(data));
+  });
+  mesher->AddObserver(vtkCommand::ProgressEvent, progress);
+  mesher->SetContainerAlgorithm(this);
+  this->UpdateProgress(0.05);
   // Piece p of n: the mesher's slab p of the grid; the union of the pieces is the
   // one-piece mesh.
   mesher->UpdatePiece(piece, pieces, 0);
+  if (this->CheckAbort())
+  {
+    return 1; // cancelled: the executive empties the output
+  }
   if (!messages.Error.empty())
   {
     vtkErrorMacro(<< "Meshing failed: " << messages.Error);

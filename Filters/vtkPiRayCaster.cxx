@@ -186,6 +186,8 @@ struct CastRows
   vtkPiRayCaster* Algorithm;
   std::atomic<bool>* Abort;
   int RowBegin, RowEnd; // the image rows [RowBegin, RowEnd) of every view
+  std::atomic<vtkIdType>* Finished; // rows cast so far, for the progress
+  vtkIdType RowCount;
 
   // Work buffers of one thread's chunk of rows (locals of operator(), not thread_local:
   // a thread_local costs a call to find it at every ray).
@@ -299,6 +301,13 @@ struct CastRows
       for (int i = 0; i < v.W; ++i)
       {
         this->Cast(v, static_cast<int>(vi), i, static_cast<int>(r), out, buffers, grid);
+      }
+      // Casting is 80 % of the progress, reported from the main thread about every
+      // percent.
+      const vtkIdType finished = ++*this->Finished;
+      if (single && finished * 100 / this->RowCount != (finished - 1) * 100 / this->RowCount)
+      {
+        this->Algorithm->UpdateProgress(0.8 * (static_cast<double>(finished) / this->RowCount));
       }
     }
   }
@@ -653,8 +662,9 @@ int vtkPiRayCaster::RequestData(
     }
   }
   lap("tiles");
+  std::atomic<vtkIdType> finished{ 0 };
   CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &tiles, this,
-    &abort, rowBegin, rowEnd };
+    &abort, rowBegin, rowEnd, &finished, rowCount };
   lap("setup");
   // Rows differ a lot in cost (the model covers the middle of the image): small chunks
   // keep the threads balanced.
@@ -733,6 +743,11 @@ int vtkPiRayCaster::RequestData(
   });
 
   lap("attributes");
+  if (this->CheckAbort())
+  {
+    return 1;
+  }
+  this->UpdateProgress(0.9);
   vtkPointData* pd = output->GetPointData();
   const std::vector<vtkDataArray*> arrays{ normals, gradient, depth, pixel, viewIndex, hitIndex,
     singular, tangent, factor };
