@@ -6,9 +6,11 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkPiSurface.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
+#include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
 #include <cmath>
@@ -47,6 +49,15 @@ inline std::string ModelPath(const std::string& name)
   const bool hasSuffix = name.size() >= suffix.size() &&
     name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   return std::string(PISURF_MODELS_DIR) + "/" + name + (hasSuffix ? "" : suffix);
+}
+
+/// The model `name` of Testing/Data/Models in a new vtkPiSurface (LoadModel reports a
+/// file that does not load through VTK's error mechanism, which the tests watch).
+inline vtkSmartPointer<vtkPiSurface> LoadModel(const std::string& name)
+{
+  auto surface = vtkSmartPointer<vtkPiSurface>::New();
+  surface->LoadModel(ModelPath(name).c_str());
+  return surface;
 }
 
 /// Compares the window with the test's baseline (-V, -T options in argv; -I shows it

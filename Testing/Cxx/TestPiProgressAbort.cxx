@@ -15,10 +15,8 @@
 #include "vtkPiImageTriangulator.h"
 #include "vtkPiMoleculeSurface.h"
 #include "vtkPiRayCaster.h"
-#include "vtkPiSurface.h"
 #include "vtkPiSurfaceSource.h"
 #include "vtkPolyData.h"
-#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <fstream>
@@ -100,13 +98,6 @@ int Check(const char* name, vtkPolyDataAlgorithm* algorithm)
   }
   return failures;
 }
-
-vtkSmartPointer<vtkPiSurface> Model(const char* name)
-{
-  auto surface = vtkSmartPointer<vtkPiSurface>::New();
-  surface->LoadModel(pitest::ModelPath(name).c_str());
-  return surface;
-}
 }
 
 int TestPiProgressAbort(int, char*[])
@@ -114,18 +105,18 @@ int TestPiProgressAbort(int, char*[])
   int failures = 0;
 
   vtkNew<vtkPiFlyingEdges> mesher;
-  mesher->SetPiSurface(Model("cup_a1.0"));
+  mesher->SetPiSurface(pitest::LoadModel("cup_a1.0"));
   mesher->SetResolution(96);
   failures += Check("vtkPiFlyingEdges", mesher);
 
   vtkNew<vtkPiRayCaster> caster;
-  caster->SetPiSurface(Model("cup_a1.0"));
+  caster->SetPiSurface(pitest::LoadModel("cup_a1.0"));
   caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
   caster->SetResolution(96, 96);
   failures += Check("vtkPiRayCaster", caster);
 
   vtkNew<vtkPiRayCaster> cloud;
-  cloud->SetPiSurface(Model("cup_a1.0"));
+  cloud->SetPiSurface(pitest::LoadModel("cup_a1.0"));
   cloud->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
   cloud->SetResolution(96, 96);
   cloud->Update();

@@ -154,12 +154,6 @@ int Compare(const std::string& what, const Run& run)
   return failures;
 }
 
-vtkSmartPointer<vtkPiSurface> Model(const char* name)
-{
-  auto surface = vtkSmartPointer<vtkPiSurface>::New();
-  surface->LoadModel(pitest::ModelPath(name).c_str());
-  return surface;
-}
 }
 
 int TestPiThreads(int, char*[])
@@ -170,7 +164,7 @@ int TestPiThreads(int, char*[])
   // The mesher: the cup (polynomial factors, octant classification, envelope flood).
   failures += Compare("mesher cup", [] {
     vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(Model("cup_a1.0.pisurf"));
+    mesher->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
     mesher->SetResolution(96);
     mesher->SetComputeGradientMagnitude(true);
     mesher->Update();
@@ -179,7 +173,7 @@ int TestPiThreads(int, char*[])
   // All sheets (no envelope) of the eggplant.
   failures += Compare("mesher eggplant all sheets", [] {
     vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(Model("eggplant_r0.25.pisurf"));
+    mesher->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
     mesher->SetResolution(80);
     mesher->SetOuterEnvelope(false);
     mesher->Update();
@@ -188,7 +182,7 @@ int TestPiThreads(int, char*[])
   // The ray caster: six axis views with all hits (the hits, their arrays, the views).
   failures += Compare("ray caster table", [] {
     vtkNew<vtkPiRayCaster> caster;
-    caster->SetPiSurface(Model("table.pisurf"));
+    caster->SetPiSurface(pitest::LoadModel("table.pisurf"));
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
     caster->SetAllHits(true);
     caster->SetResolution(96, 80);
@@ -198,7 +192,7 @@ int TestPiThreads(int, char*[])
   // A perspective camera.
   failures += Compare("ray caster camera", [] {
     vtkNew<vtkPiRayCaster> caster;
-    caster->SetPiSurface(Model("cup_a1.0.pisurf"));
+    caster->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
     caster->SetViewMode(vtkPiRayCaster::CAMERA);
     caster->SetCameraPosition(0.6, -9, 1.5);
     caster->SetCameraFocalPoint(0.6, 0, -1.15);
@@ -212,7 +206,7 @@ int TestPiThreads(int, char*[])
   {
     failures += Compare(std::string("triangulator mode ") + std::to_string(mode), [mode] {
       vtkNew<vtkPiRayCaster> caster;
-      caster->SetPiSurface(Model("eggplant_r0.25.pisurf"));
+      caster->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
       caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
       caster->SetResolution(64, 64);
       vtkNew<vtkPiImageTriangulator> triangulator;
@@ -240,7 +234,7 @@ int TestPiThreads(int, char*[])
   // The grid sampler: rows split between threads.
   failures += Compare("sampler cup", [] {
     vtkNew<vtkPiSampleFunction> sampler;
-    sampler->SetPiSurface(Model("cup_a1.0.pisurf"));
+    sampler->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
     sampler->SetSampleDimensions(70, 50, 40);
     sampler->Update();
     return vtkSmartPointer<vtkDataObject>(sampler->GetOutput());
