@@ -1078,6 +1078,12 @@ struct VertexAttributes
   bool Project;
   double Tolerance; // stop when the bracket is shorter than this
   bool PositiveEnvelope; // the outer envelope is on and its outside sign is +
+  // Progress from 0.75 to 1 and cancel, through the main thread (this pass is the
+  // longest for a large molecule).
+  vtkPiFlyingEdges* Algorithm;
+  std::atomic<bool>* Abort;
+  std::atomic<vtkIdType>* Done;
+  vtkIdType Total;
 
   double Refine(const double a[3], const double b[3], double t, double va, double vb) const
   {
@@ -1224,6 +1230,23 @@ struct VertexAttributes
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
+    if (vtkSMPTools::GetSingleThread())
+    {
+      if (this->Algorithm->CheckAbort())
+      {
+        *this->Abort = true;
+      }
+      else
+      {
+        this->Algorithm->UpdateProgress(
+          0.75 + 0.25 * (static_cast<double>(*this->Done) / std::max<vtkIdType>(this->Total, 1)));
+      }
+    }
+    if (*this->Abort)
+    {
+      return;
+    }
+    *this->Done += end - begin;
     const int* d = this->G->Dims;
     // Edge keys of grids below 2^32 keys decode with 32-bit divisions (several times
     // faster than 64-bit ones on common CPUs).
@@ -1736,11 +1759,16 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
     (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  std::atomic<vtkIdType> done{ 0 };
   VertexAttributes attributes{ &evaluator, &g, &vertexEdge, &vertexT, &vertexEnds, points,
-    normals, factor,
-    gradientMagnitude, this->ProjectVertices, 1e-13 * size,
-    envelope && envelope->GetOutside() > 0 };
-  vtkSMPTools::For(0, vertices, attributes);
+    normals, factor, gradientMagnitude, this->ProjectVertices, 1e-13 * size,
+    envelope && envelope->GetOutside() > 0, this, &abort, &done, vertices };
+  // Chunks of 4096 vertices: the main thread reports and checks for a cancel between them.
+  vtkSMPTools::For(0, vertices, 4096, attributes);
+  if (abort || this->CheckAbort())
+  {
+    return 1;
+  }
   lap("vertices");
 
   // Triangles face ∇F, like the Normals, so renderers light the side they see: the
