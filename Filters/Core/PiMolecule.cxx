@@ -171,6 +171,18 @@ inline double Weight(double u, double& derivative)
   derivative = -30.0 * u * u * (1.0 - u) * (1.0 - u);
   return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
 }
+// The Local factor g of an atom at squared distance d2 from its centre, as the product
+// of F multiplies it (1 beyond ρ; f itself inside the sphere): the one expression of
+// ComputeLocal and EvaluateBox, so that both give the same bits.
+inline double LocalTerm(double d2, double r2, double rho2, double inverseSpan)
+{
+  const double f = d2 - r2;
+  const double u = f * inverseSpan;
+  const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+  const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
+  return d2 < rho2 ? g : 1.0;
+}
+
 // The Local factor as a function of f = d² − R²: g = f·w + (1 − w) with u = f/(ρ² − R²)
 // clamped to [0, 1], without branches (g = f exactly inside the sphere, 1 exactly
 // beyond ρ), and its derivative dg/df = w + (f − 1) w'(u)/(ρ² − R²).
@@ -764,19 +776,10 @@ double MoleculeField::ComputeLocal(const Cell* cell, const double p[3]) const
     const double* c = centers + 3 * i;
     const double v0 = p[0] - c[0], v1 = p[1] - c[1], v2 = p[2] - c[2];
     const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-    if (d2 >= this->Rho2[i])
+    if (d2 < this->Rho2[i]) // (beyond ρ, g = 1)
     {
-      continue; // g = 1
+      product *= LocalTerm(d2, this->R2[i], this->Rho2[i], this->InvSpan[i]);
     }
-    const double f = d2 - this->R2[i];
-    if (f <= 0.0)
-    {
-      product *= f; // w = 1: g = f
-      continue;
-    }
-    const double u = f * this->InvSpan[i];
-    const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-    product *= 1.0 + (f - 1.0) * w;
   }
   return product - this->Level;
 }
@@ -992,43 +995,8 @@ void MoleculeField::EvaluateVertex(
   const Cell* cell = this->CellAt(p);
   if (this->Settings.Mode == MoleculeMode::Local)
   {
-    // Plain doubles (see ComputeLocal); only atoms within their ρ change the product,
-    // and the nearest sphere is among them (F = 0 needs some g_i != 1, and an atom
-    // beyond ρ is farther than InfluenceRadius from its sphere).
-    double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
-    nearest = -1;
-    if (cell)
-    {
-      for (int i : cell->Near)
-      {
-        const double* c = &this->Centers[3 * i];
-        const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
-        const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        if (d2 >= this->Rho2[i])
-        {
-          continue;
-        }
-        double g[3];
-        const double f = this->AtomFactor(i, p, g);
-        for (int k = 0; k < 3; ++k)
-        {
-          grad[k] = grad[k] * f + product * g[k];
-        }
-        product *= f;
-        const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
-        if (distance < best)
-        {
-          best = distance;
-          nearest = i;
-        }
-      }
-    }
-    const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
-    gradientNorm = std::isfinite(norm) ? norm : 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      normal[k] = norm > 0 && std::isfinite(norm) ? grad[k] / norm : 0.0;
-    }
+    this->LocalVertex(p, cell ? cell->Near.data() : nullptr, cell ? cell->Near.size() : 0,
+      normal, gradientNorm, nearest, nullptr);
     return;
   }
   std::vector<int> all;
@@ -1134,15 +1102,10 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
       double* row = values + k * strideZ + j * strideY;
       for (int m = lo; m <= hi; ++m)
       {
-        // ComputeLocal's arithmetic, term by term, its branches as selects (the
-        // multiply by exactly 1 where the atom is skipped changes nothing).
+        // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the
+        // atom is beyond ρ changes nothing).
         const double v0 = xs[m] - c[0];
-        const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-        const double f = d2 - r2;
-        const double u = f * inverse;
-        const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-        const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
-        row[m] *= d2 < rho2 ? g : 1.0;
+        row[m] *= LocalTerm(v0 * v0 + v1 * v1 + v2 * v2, r2, rho2, inverse);
       }
     });
   }
@@ -1439,28 +1402,42 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   {
     x[k] = a[k] + vertex.S * (b[k] - a[k]);
   }
-  // EvaluateVertex's Local branch (to rounding) and OffOuterSide at x, over the same
-  // atoms.
+  // EvaluateVertex's answers and OffOuterSide at x, over the same atoms (every atom
+  // within ρ of x is among them).
+  this->LocalVertex(x, ids, count, vertex.Normal, vertex.GradientNorm, vertex.Nearest,
+    &vertex.OffOuterSide);
+  return true;
+}
+
+void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t count,
+  double normal[3], double& gradientNorm, int& nearest, bool* inside) const
+{
+  // Plain doubles (see ComputeLocal); only atoms within their ρ change the product, and
+  // the nearest sphere is among them (F = 0 needs some g_i != 1, and an atom beyond ρ is
+  // farther than InfluenceRadius from its sphere).
   double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
-  vertex.Nearest = -1;
-  vertex.OffOuterSide = false;
-  for (int m = 0; m < count; ++m)
+  nearest = -1;
+  if (inside)
   {
-    const int i = ids[m];
+    *inside = false;
+  }
+  for (size_t m = 0; m < count; ++m)
+  {
+    const int i = atoms[m];
     const double* c = &this->Centers[3 * i];
-    const double v[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
+    const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
     const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (level > 0 && d2 < this->Radii[i] * this->Radii[i])
+    if (inside && this->Level > 0 && d2 < this->Radii[i] * this->Radii[i])
     {
-      vertex.OffOuterSide = true;
+      *inside = true; // OffOuterSide's test
     }
-    if (d2 >= Rho2[m])
+    if (d2 >= this->Rho2[i])
     {
       continue;
     }
-    // g and ∇g = (dg/df)·2v, as AtomFactor.
+    // g and ∇g = (dg/df)·2v, AtomFactor's values without its branches and division.
     double slope;
-    const double g = LocalFactor(d2 - R2[m], Inverse[m], slope);
+    const double g = LocalFactor(d2 - this->R2[i], this->InvSpan[i], slope);
     for (int k = 0; k < 3; ++k)
     {
       grad[k] = grad[k] * g + product * 2.0 * slope * v[k];
@@ -1470,16 +1447,15 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     if (distance < best)
     {
       best = distance;
-      vertex.Nearest = i;
+      nearest = i;
     }
   }
   const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
-  vertex.GradientNorm = std::isfinite(norm) ? norm : 0.0;
+  gradientNorm = std::isfinite(norm) ? norm : 0.0;
   for (int k = 0; k < 3; ++k)
   {
-    vertex.Normal[k] = norm > 0 && std::isfinite(norm) ? grad[k] / norm : 0.0;
+    normal[k] = norm > 0 && std::isfinite(norm) ? grad[k] / norm : 0.0;
   }
-  return true;
 }
 
 int MoleculeField::ClassifyBox(const double box[6]) const

@@ -174,6 +174,11 @@ private:
   // Local mode: F from the cell's atoms in plain doubles (|g_i| <= max(R_i², 1) and only
   // the few atoms whose sphere holds p are negative: no overflow), no logarithm.
   double ComputeLocal(const Cell* cell, const double p[3]) const;
+  // Local mode: EvaluateVertex's answers at p over `atoms` (which must hold every atom
+  // within its ρ of p) and, if `inside` is not null, OffOuterSide's (p strictly inside
+  // one of their spheres).
+  void LocalVertex(const double p[3], const int* atoms, size_t count, double normal[3],
+    double& gradientNorm, int& nearest, bool* inside) const;
   double ComputeExact(const double p[3], double& logAbsF) const;
 
   std::vector<double> Centers;
