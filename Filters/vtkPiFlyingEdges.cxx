@@ -231,6 +231,15 @@ struct Grid
   {
     return std::min(c[a] * BlockCells + BlockCells, this->Dims[a] - 1);
   }
+  // The points [first, last] of block c on the three axes.
+  void Range(const int c[3], int first[3], int last[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      first[a] = this->First(c, a);
+      last[a] = this->Last(c, a);
+    }
+  }
   // Blocks along one axis whose point range contains index i.
   int Containing(int i, int a, int out[2]) const
   {
@@ -379,8 +388,8 @@ struct SampleBlocks
       if (this->Field)
       {
         // A field that evaluates a whole box at once (bit for bit as point by point).
-        const int first[3] = { this->G->First(c, 0), this->G->First(c, 1), this->G->First(c, 2) };
-        const int last[3] = { this->G->Last(c, 0), this->G->Last(c, 1), this->G->Last(c, 2) };
+        int first[3], last[3];
+        this->G->Range(c, first, last);
         if (this->Field->EvaluateBox(this->G->Origin, this->G->Spacing, first, last, BlockPoints,
               BlockPoints * BlockPoints, v))
         {
@@ -624,8 +633,8 @@ public:
           bool boxed = false;
           if (!skipped && field && outside > 0)
           {
-            const int first[3] = { grid->First(c, 0), grid->First(c, 1), grid->First(c, 2) };
-            const int last[3] = { grid->Last(c, 0), grid->Last(c, 1), grid->Last(c, 2) };
+            int first[3], last[3];
+            grid->Range(c, first, last);
             boxed = field->OffOuterSideBox(grid->Origin, grid->Spacing, first, last,
               BlockPoints, BlockPoints * BlockPoints, off);
           }
@@ -937,8 +946,8 @@ struct Contour
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
       const double* v = this->G->Values + size_t(s) * Points;
-      const int f[3] = { this->G->First(c, 0), this->G->First(c, 1), this->G->First(c, 2) };
-      const int l[3] = { this->G->Last(c, 0), this->G->Last(c, 1), this->G->Last(c, 2) };
+      int f[3], l[3];
+      this->G->Range(c, f, l);
       signed char* sign = this->Signs + size_t(s) * Points;
       if (this->Pass == Count)
       {

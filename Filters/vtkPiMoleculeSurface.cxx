@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiMoleculeSurface.h"
+#include "PiInnerAlgorithm.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 
@@ -497,14 +498,7 @@ int vtkPiMoleculeSurface::RequestData(
   mesher->AddObserver(vtkCommand::WarningEvent, forward);
   // The mesher is most of the time: its progress is ours (from 0.05 to 0.95), and a
   // cancel of this filter (AbortExecute, ParaView's cancel button) stops it.
-  vtkNew<vtkCallbackCommand> progress;
-  progress->SetClientData(this);
-  progress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    static_cast<vtkPiMoleculeSurface*>(client)->UpdateProgress(
-      0.05 + 0.9 * *static_cast<double*>(data));
-  });
-  mesher->AddObserver(vtkCommand::ProgressEvent, progress);
-  mesher->SetContainerAlgorithm(this);
+  PiWorkFor(mesher, this, 0.05, 0.9);
   this->UpdateProgress(0.05);
   // Piece p of n: the mesher's slab p of the grid; the union of the pieces is the
   // one-piece mesh.

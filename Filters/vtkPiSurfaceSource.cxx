@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSurfaceSource.h"
-
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
+#include "PiInnerAlgorithm.h"
 #include "PiPieces.h"
 #include "vtkPiImageTriangulator.h"
 #include "vtkPiRayCaster.h"
@@ -119,25 +117,10 @@ int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
   vtkNew<vtkPiImageTriangulator> triangulator;
   triangulator->SetInputConnection(caster->GetOutputPort());
   triangulator->SetMergeMode(vtkPiImageTriangulator::RAY_LATTICE);
-  triangulator->SetContainerAlgorithm(this);
-  caster->SetContainerAlgorithm(this);
-  // Their progress is ours: the casts from 0 to 0.5, the triangulation from 0.5 to 1.
-  struct Stage
-  {
-    vtkPiSurfaceSource* Self;
-    double Start;
-  } casting{ this, 0.0 }, triangulating{ this, 0.5 };
-  auto forward = [](vtkObject*, unsigned long, void* client, void* data) {
-    const Stage* stage = static_cast<const Stage*>(client);
-    stage->Self->UpdateProgress(stage->Start + 0.5 * *static_cast<double*>(data));
-  };
-  vtkNew<vtkCallbackCommand> casterProgress, triangulatorProgress;
-  casterProgress->SetClientData(&casting);
-  casterProgress->SetCallback(forward);
-  triangulatorProgress->SetClientData(&triangulating);
-  triangulatorProgress->SetCallback(forward);
-  caster->AddObserver(vtkCommand::ProgressEvent, casterProgress);
-  triangulator->AddObserver(vtkCommand::ProgressEvent, triangulatorProgress);
+  // Their progress is ours (the casts from 0 to 0.5, the triangulation from 0.5 to 1),
+  // and so is our cancel.
+  PiWorkFor(caster, this, 0.0, 0.5);
+  PiWorkFor(triangulator, this, 0.5, 0.5);
   caster->Update();
   if (this->CheckAbort())
   {
