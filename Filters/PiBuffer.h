@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <utility>
 
 namespace pisurf
 {
@@ -32,6 +33,35 @@ public:
 private:
   std::unique_ptr<T[]> Data;
   std::size_t Size = 0;
+};
+
+/// A std::vector allocator whose resize leaves new elements of trivial types
+/// uninitialized (default-initialized instead of value-initialized), for vectors that
+/// grow by a resize the threads then fill.
+template <typename T>
+class DefaultInitAllocator : public std::allocator<T>
+{
+public:
+  template <typename U>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <typename U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
 };
 }
 

@@ -19,11 +19,12 @@ namespace
 using pisurf::Buffer;
 
 // Half-edge h = 3·t + k of triangle t runs from its corner k to its corner k + 1.
-template <typename Id>
+// Id: half-edge and point ids inside; Conn: the connectivity's id type.
+template <typename Id, typename Conn>
 class FlipMesh
 {
 public:
-  FlipMesh(vtkIdType* c, vtkIdType triangles, vtkIdType points, const double* xyz, const float* n)
+  FlipMesh(Conn* c, vtkIdType triangles, vtkIdType points, const double* xyz, const float* n)
     : C(c)
     , T(static_cast<Id>(triangles))
     , N(static_cast<Id>(points))
@@ -204,7 +205,7 @@ private:
                         : 3 * t2; // Prev(O)
   }
 
-  vtkIdType* C;
+  Conn* C;
   Id T, N;
   const double* X;
   const float* Normal;
@@ -213,8 +214,8 @@ private:
   Buffer<Id> RecH, RecO; // per triangle flipped this round: the flip's two half-edges
 };
 
-template <typename Id>
-vtkIdType FlipMesh<Id>::Build()
+template <typename Id, typename Conn>
+vtkIdType FlipMesh<Id, Conn>::Build()
 {
   // Half-edges gathered by their lower vertex (CSR). Each thread owns a range of lower
   // vertices and reads all the triangles (cheap, sequential) to gather its own.
@@ -248,60 +249,66 @@ vtkIdType FlipMesh<Id>::Build()
   {
     start[k + 1] += start[k];
   }
-  struct Entry // not initialized on allocation: the fill below writes every one
-  {
-    Id Upper, Half;
-    bool operator<(const Entry& o) const
-    {
-      return this->Upper < o.Upper || (this->Upper == o.Upper && this->Half < o.Half);
-    }
-  };
-  std::unique_ptr<Entry[]> entries(new Entry[h3]);
+  // (not initialized on allocation: the fill below writes every one)
+  std::unique_ptr<Id[]> entries(new Id[h3]);
   vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
       const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
       const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
       std::vector<Id> fill(start.begin() + lo, start.begin() + hi);
-      forEachOfPart(static_cast<Id>(part),
-        [&](Id low, Id high, Id h) { entries[fill[low - lo]++] = { high, h }; });
+      forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id h) { entries[fill[low - lo]++] = h; });
     }
   });
   // Every half-edge is in one vertex's entries: its opposite (or −1) is written there.
+  // The half-edges of a vertex that share their upper vertex are one edge: paired when
+  // there are two of opposite orientation, a boundary edge when alone.
   this->Opp.Allocate(h3);
   std::atomic<vtkIdType> boundary{ 0 };
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
     vtkIdType count = 0;
+    std::vector<Id> upper;
+    std::vector<unsigned char> grouped;
     for (vtkIdType v = b; v < e; ++v)
     {
-      Entry* first = entries.get() + start[v];
-      Entry* last = entries.get() + start[v + 1];
-      std::sort(first, last);
-      for (Entry* x = first; x != last;)
+      const Id* half = entries.get() + start[v];
+      const Id k = start[v + 1] - start[v];
+      upper.resize(k);
+      grouped.assign(k, 0);
+      for (Id i = 0; i < k; ++i)
       {
-        Entry* y = x + 1;
-        while (y != last && y->Upper == x->Upper)
+        upper[i] = std::max(this->From(half[i]), this->To(half[i]));
+        this->Opp[half[i]] = -1;
+      }
+      for (Id i = 0; i < k; ++i)
+      {
+        if (grouped[i])
         {
-          ++y;
+          continue;
         }
-        for (Entry* z = x; z != y; ++z)
+        Id size = 1, other = -1;
+        for (Id j = i + 1; j < k; ++j)
         {
-          this->Opp[z->Half] = -1;
+          if (upper[j] == upper[i])
+          {
+            grouped[j] = 1;
+            other = j;
+            ++size;
+          }
         }
-        if (y - x == 1)
+        if (size == 1)
         {
           ++count;
         }
-        else if (y - x == 2)
+        else if (size == 2)
         {
-          const Id h1 = x->Half, h2 = (x + 1)->Half;
+          const Id h1 = half[i], h2 = half[other];
           if (this->From(h1) == this->To(h2) && this->To(h1) == this->From(h2))
           {
             this->Opp[h1] = h2;
             this->Opp[h2] = h1;
           }
         }
-        x = y;
       }
     }
     boundary += count;
@@ -309,8 +316,8 @@ vtkIdType FlipMesh<Id>::Build()
   return boundary;
 }
 
-template <typename Id>
-vtkIdType FlipMesh<Id>::Round()
+template <typename Id, typename Conn>
+vtkIdType FlipMesh<Id, Conn>::Round()
 {
   const Id h3 = 3 * this->T;
   PiPassTimer lap("PiFlipEdgesToCurvature");
@@ -437,12 +444,12 @@ vtkIdType FlipMesh<Id>::Round()
   return flips;
 }
 
-template <typename Id>
-PiEdgeFlipResult Run(vtkIdType* connectivity, vtkIdType triangles, vtkIdType points,
+template <typename Id, typename Conn>
+PiEdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
   const double* xyz, const float* normals, int rounds)
 {
   PiEdgeFlipResult result;
-  FlipMesh<Id> mesh(connectivity, triangles, points, xyz, normals);
+  FlipMesh<Id, Conn> mesh(connectivity, triangles, points, xyz, normals);
   PiPassTimer lap("PiFlipEdgesToCurvature");
   result.BoundaryEdges = mesh.Build();
   lap("build");
@@ -458,14 +465,29 @@ PiEdgeFlipResult Run(vtkIdType* connectivity, vtkIdType triangles, vtkIdType poi
   }
   return result;
 }
+
+bool Fits32(vtkIdType triangles, vtkIdType points)
+{
+  return 3 * triangles < std::numeric_limits<std::int32_t>::max() &&
+    points < std::numeric_limits<std::int32_t>::max();
+}
 }
 
 PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds)
 {
   // 32-bit half-edge ids when they fit: half the memory traffic.
-  if (3 * triangles < std::numeric_limits<std::int32_t>::max() &&
-    points < std::numeric_limits<std::int32_t>::max())
+  if (Fits32(triangles, points))
+  {
+    return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
+  }
+  return Run<std::int64_t>(connectivity, triangles, points, xyz, normals, rounds);
+}
+
+PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
+  vtkIdType points, const double* xyz, const float* normals, int rounds)
+{
+  if (Fits32(triangles, points))
   {
     return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
   }

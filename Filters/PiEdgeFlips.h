@@ -26,6 +26,8 @@
 
 #include "vtkType.h"
 
+#include <cstdint>
+
 #include <cmath>
 
 /// |(n_p − n_q)·(q − p)| for points p, q with unit normals np, nq: about 8 times the
@@ -53,6 +55,9 @@ struct PiEdgeFlipResult
 /// place. `xyz`: the points (3 doubles each); `normals`: unit normals (3 floats each).
 /// Threaded with vtkSMPTools; the result does not depend on the number of threads.
 PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
+  vtkIdType points, const double* xyz, const float* normals, int rounds);
+/// The same on 32-bit connectivity (vtkCellArray's 32-bit storage).
+PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds);
 
 #endif

@@ -5,7 +5,10 @@
  *
  * `PiPassTimer lap("vtkPiFlyingEdges");` then `lap("classify");` after each pass prints
  * "vtkPiFlyingEdges classify: 0.0123 s" (wall time, or process CPU time with `Cpu`)
- * when the environment variable PISURF_TIMING is set, and nothing otherwise.
+ * when the environment variable PISURF_TIMING is set, and nothing otherwise. Where the
+ * system has getrusage, a wall-time lap also gives the CPU time of all threads and the
+ * page faults (first touches of fresh memory) of the pass:
+ * "vtkPiFlyingEdges classify: 0.0123 s (CPU 0.0240 s, 1200 page faults)".
  */
 #ifndef PiTiming_h
 #define PiTiming_h
@@ -14,6 +17,10 @@
 #include <cstdlib>
 #include <ctime>
 #include <iostream>
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/resource.h>
+#define PI_TIMING_RUSAGE 1
+#endif
 
 class PiPassTimer
 {
@@ -44,7 +51,20 @@ public:
     }
     const double now = this->Now();
     std::cerr << this->Owner << " " << pass << ": " << now - this->Last << " s"
-              << (this->Kind == Cpu ? " CPU" : "") << "\n";
+              << (this->Kind == Cpu ? " CPU" : "");
+#ifdef PI_TIMING_RUSAGE
+    if (this->Kind == Wall)
+    {
+      double cpu;
+      long faults;
+      Usage(cpu, faults);
+      std::cerr << " (CPU " << cpu - this->LastCpu << " s, " << faults - this->LastFaults
+                << " page faults)";
+      this->LastCpu = cpu;
+      this->LastFaults = faults;
+    }
+#endif
+    std::cerr << "\n";
     this->Last = now;
   }
 
@@ -68,12 +88,33 @@ private:
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
   }
-  void Reset() { this->Start = this->Last = this->Now(); }
+  void Reset()
+  {
+    this->Start = this->Last = this->Now();
+#ifdef PI_TIMING_RUSAGE
+    if (this->Enabled)
+    {
+      Usage(this->LastCpu, this->LastFaults);
+    }
+#endif
+  }
+#ifdef PI_TIMING_RUSAGE
+  // The process's CPU time (user and system, all threads) and minor page faults.
+  static void Usage(double& cpu, long& faults)
+  {
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    cpu = u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+    faults = u.ru_minflt;
+  }
+#endif
 
   const char* Owner;
   Clock Kind;
   bool Enabled;
   double Start = 0, Last = 0;
+  double LastCpu = 0;
+  long LastFaults = 0;
 };
 
 #endif

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
+#include "PiBuffer.h"
 #include "PiEdgeFlips.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
@@ -27,6 +28,8 @@
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -40,6 +43,8 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiImageTriangulator);
@@ -329,7 +334,9 @@ struct Triangulation
   std::unique_ptr<pisurf::RayCaster> Caster;
   double Size = 1;
   std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
-  std::vector<Computed> Points;        // computed points, by key
+  // computed points, by key (not initialized on allocation: the threads that compute
+  // them write them)
+  std::vector<Computed, pisurf::DefaultInitAllocator<Computed>> Points;
   std::atomic<bool> Abort{ false };
   bool ChooseDiagonals = true; // split lattice polygons by PiBend (else fan them)
   double Probe = 0, SingularTolerance = 0.1; // the singular test of computed points
@@ -448,28 +455,43 @@ void Triangulation::RunLattice(const Lattice& L)
 
   // PASS 1: the hits of every lattice line, sorted along it; duplicates (the same
   // root seen from both ends of a line) kept once.
-  std::vector<vtkIdType> first(lines + 1, 0);
+  // (counted and filled by all threads: the order of a line's samples is then the
+  // threads' order, and the sort below makes it the same every time)
+  pisurf::Buffer<vtkIdType> first;
+  first.Allocate(lines + 1);
+  first[0] = 0;
   auto lineOf = [&](vtkIdType id) {
     const View& v = this->Views[this->C.ViewOf[id]];
     return L.Line(v.Axis, this->C.Pixel[2 * id] + 1, this->C.Pixel[2 * id + 1] + 1);
   };
-  for (vtkIdType id = 0; id < this->C.N; ++id)
-  {
-    ++first[lineOf(id) + 1];
-  }
+  std::unique_ptr<std::atomic<vtkIdType>[]> cursor(new std::atomic<vtkIdType>[lines]);
+  vtkSMPTools::For(0, lines, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType l = b; l < e; ++l)
+    {
+      cursor[l].store(0, std::memory_order_relaxed);
+    }
+  });
+  vtkSMPTools::For(0, this->C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
+    {
+      cursor[lineOf(id)].fetch_add(1, std::memory_order_relaxed);
+    }
+  });
   for (vtkIdType l = 0; l < lines; ++l)
   {
-    first[l + 1] += first[l];
+    first[l + 1] = first[l] + cursor[l].load(std::memory_order_relaxed);
+    cursor[l].store(first[l], std::memory_order_relaxed);
   }
-  std::vector<Sample> samples(this->C.N);
-  {
-    std::vector<vtkIdType> fill(first.begin(), first.end() - 1);
-    for (vtkIdType id = 0; id < this->C.N; ++id)
+  std::unique_ptr<Sample[]> samples(new Sample[this->C.N]);
+  vtkSMPTools::For(0, this->C.N, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType id = b; id < e; ++id)
     {
       const View& v = this->Views[this->C.ViewOf[id]];
-      samples[fill[lineOf(id)]++] = { this->C.P[3 * id + v.Axis], id, this->C.Tangent[id] != 0 };
+      samples[cursor[lineOf(id)].fetch_add(1, std::memory_order_relaxed)] = { this->C.P[3 * id + v.Axis],
+        id, this->C.Tangent[id] != 0 };
     }
-  }
+  });
+  cursor.reset();
 
   // Which part of each line the views have not seen: all-hits views see everything;
   // a first-hit view looking along −a sees down to its first hit, one along +a up to
@@ -482,7 +504,16 @@ void Triangulation::RunLattice(const Lattice& L)
     (v.Sense < 0 ? minus : plus)[v.Axis] = true;
   }
   lap("lines filled");
-  std::vector<std::vector<Sample>> hidden(lines);
+  // The hidden roots: their number per line, and the roots themselves per range of
+  // lines that one call of the functor below casts (in line order).
+  std::unique_ptr<std::int32_t[]> hiddenCount(new std::int32_t[lines]);
+  struct HiddenRange
+  {
+    vtkIdType Begin;
+    std::vector<Sample> Roots;
+  };
+  std::vector<HiddenRange> hiddenRanges;
+  std::mutex hiddenMutex;
   std::atomic<bool> missingModel{ false };
   // The lines of axis a are the rays of an orthographic grid (the pixels of the views
   // along a): polynomial products restrict them from one composition per axis
@@ -507,12 +538,14 @@ void Triangulation::RunLattice(const Lattice& L)
   vtkSMPTools::For(0, lines, [&](vtkIdType begin, vtkIdType end) {
     std::vector<pisurf::RayRoot> roots;
     std::vector<double> row, coefficients;
+    std::vector<Sample> found;
     vtkIdType rowOf = -1; // the (axis, mv) whose row coefficients `row` holds
+    std::fill(hiddenCount.get() + begin, hiddenCount.get() + end, 0);
     for (vtkIdType l = begin; l < end && !this->Abort; ++l)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
-      Sample* s0 = samples.data() + first[l];
-      Sample* s1 = samples.data() + first[l + 1];
+      Sample* s0 = samples.get() + first[l];
+      Sample* s1 = samples.get() + first[l + 1];
       std::sort(s0, s1);
       if (allHits[a])
       {
@@ -597,9 +630,15 @@ void Triangulation::RunLattice(const Lattice& L)
         const double x = origin + r.T;
         if (x > lo && x < hi)
         {
-          hidden[l].push_back({ x, 0, r.Tangent });
+          found.push_back({ x, 0, r.Tangent });
+          ++hiddenCount[l];
         }
       }
+    }
+    if (!found.empty())
+    {
+      std::lock_guard<std::mutex> lock(hiddenMutex);
+      hiddenRanges.push_back({ begin, std::move(found) });
     }
   });
   lap("sorted lines, hidden parts cast");
@@ -623,13 +662,27 @@ void Triangulation::RunLattice(const Lattice& L)
   {
     lineView[this->Views[v].Axis] = static_cast<int>(v);
   }
-  std::vector<vtkIdType> start(lines + 1, 0), hiddenStart(lines + 1, 0);
+  pisurf::Buffer<vtkIdType> start, hiddenStart;
+  start.Allocate(lines + 1);
+  hiddenStart.Allocate(lines + 1);
+  start[0] = hiddenStart[0] = 0;
   for (vtkIdType l = 0; l < lines; ++l)
   {
-    const vtkIdType h = static_cast<vtkIdType>(hidden[l].size());
+    const vtkIdType h = hiddenCount[l];
     start[l + 1] = start[l] + (first[l + 1] - first[l]) + h;
     hiddenStart[l + 1] = hiddenStart[l] + h;
   }
+  hiddenCount.reset();
+  // All hidden roots in line order: each range's roots go where its first line's go.
+  std::unique_ptr<Sample[]> hidden(new Sample[hiddenStart[lines]]);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      const HiddenRange& range = hiddenRanges[k];
+      std::copy(range.Roots.begin(), range.Roots.end(), hidden.get() + hiddenStart[range.Begin]);
+    }
+  });
+  hiddenRanges.clear();
   // (not initialized on allocation: the threads below write every sample)
   std::unique_ptr<Sample[]> line(new Sample[start[lines]]);
   const size_t base = this->Points.size();
@@ -639,12 +692,13 @@ void Triangulation::RunLattice(const Lattice& L)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;
       Sample* out = line.get() + start[l];
-      std::copy(samples.begin() + first[l], samples.begin() + first[l + 1], out);
+      std::copy(samples.get() + first[l], samples.get() + first[l + 1], out);
       Sample* o = out + (first[l + 1] - first[l]);
       const vtkIdType k = l - L.LineStart[a];
       size_t index = base + hiddenStart[l];
-      for (Sample s : hidden[l])
+      for (vtkIdType q = hiddenStart[l]; q < hiddenStart[l + 1]; ++q)
       {
+        Sample s = hidden[q];
         Computed& c = this->Points[index];
         c.Key = -static_cast<std::int64_t>(index) - 1;
         c.P[a] = s.X;
@@ -671,8 +725,8 @@ void Triangulation::RunLattice(const Lattice& L)
       }
     }
   });
-  hidden.clear();
-  samples.clear();
+  hidden.reset();
+  samples.reset();
 
   // The valid samples of line l with X in [x0, x1), and the first non-tangent one.
   auto firstCrossing = [&](vtkIdType l, double x0, double x1) -> const Sample* {
@@ -1623,7 +1677,6 @@ int vtkPiImageTriangulator::RequestData(
   const auto hiddenEnd = std::partition_point(T.Points.begin(), T.Points.end(),
     [](const Computed& c) { return c.Key < 0; });
   const vtkIdType hiddenCount = hiddenEnd - T.Points.begin();
-  std::reverse(T.Points.begin(), hiddenEnd);
   auto byKey = [](const Computed& x, const Computed& y) { return x.Key < y.Key; };
   std::sort(T.Points.begin() + hiddenCount, T.Points.end(), byKey);
   T.Points.erase(std::unique(T.Points.begin() + hiddenCount, T.Points.end(),
@@ -1635,9 +1688,9 @@ int vtkPiImageTriangulator::RequestData(
   {
     edgeKeys.push_back(c->Key);
   }
-  // Key −(index + 1) is at hiddenCount − 1 − index; edge keys by binary search.
+  // Key −(index + 1) is at index; edge keys by binary search.
   auto computedId = [&](std::int64_t key) -> vtkIdType {
-    return key < 0 ? hiddenCount + key
+    return key < 0 ? -key - 1
                    : hiddenCount + (std::lower_bound(edgeKeys.begin(), edgeKeys.end(), key) -
                                      edgeKeys.begin());
   };
@@ -1680,36 +1733,55 @@ int vtkPiImageTriangulator::RequestData(
     }
     return x;
   };
-  std::vector<unsigned char> visible(computedCount, 0);
+  // (in parallel: the computed points of triangles with a hit are marked visible, the
+  // triangles of computed points only are flagged; then their unions, in order)
+  std::unique_ptr<std::atomic<unsigned char>[]> marked(new std::atomic<unsigned char>[computedCount]);
+  vtkSMPTools::For(0, computedCount, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      marked[k].store(0, std::memory_order_relaxed);
+    }
+  });
+  std::unique_ptr<unsigned char[]> computedOnly(new unsigned char[triangles]);
+  vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType t = b; t < e; ++t)
+    {
+      const vtkIdType* c = corner.get() + 3 * t;
+      computedOnly[t] = c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits;
+      if (!computedOnly[t])
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          if (c[k] >= usedHits)
+          {
+            marked[c[k] - usedHits].store(1, std::memory_order_relaxed);
+          }
+        }
+      }
+    }
+  });
   for (vtkIdType t = 0; t < triangles; ++t)
   {
-    const vtkIdType* c = corner.get() + 3 * t;
-    if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
+    if (computedOnly[t])
     {
+      const vtkIdType* c = corner.get() + 3 * t;
       for (int k = 1; k < 3; ++k)
       {
         const vtkIdType x = find(c[0] - usedHits), y = find(c[k] - usedHits);
         parent[std::max(x, y)] = std::min(x, y);
       }
     }
-    else
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        if (c[k] >= usedHits)
-        {
-          visible[c[k] - usedHits] = 1;
-        }
-      }
-    }
   }
+  computedOnly.reset();
+  std::vector<unsigned char> visible(computedCount, 0);
   for (vtkIdType k = 0; k < computedCount; ++k)
   {
-    if (visible[k])
+    if (marked[k].load(std::memory_order_relaxed))
     {
       visible[find(k)] = 1;
     }
   }
+  marked.reset();
   // Output points in the order the triangles first use them (rows of the lattice), so
   // that neighbouring triangles have neighbouring points: every later pass (and the
   // user's filters) reads memory in order.
@@ -1842,37 +1914,53 @@ int vtkPiImageTriangulator::RequestData(
     blockStart[k + 1] += blockStart[k];
   }
   const vtkIdType kept = blockStart[blocks];
-  vtkNew<vtkIdTypeArray> offsets, cells;
-  cells->SetNumberOfTuples(3 * kept);
-  offsets->SetNumberOfTuples(kept + 1);
-  vtkIdType* cellIds = cells->GetPointer(0);
-  vtkIdType* offsetIds = offsets->GetPointer(0);
-  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
-    {
-      vtkIdType out = blockStart[k];
-      const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
-      for (vtkIdType t = k * blockSize; t < t1; ++t)
+  // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory of
+  // 64-bit ids for the flips below and every filter downstream), else 64-bit.
+  vtkNew<vtkCellArray> polys;
+  PiEdgeFlipResult flipped;
+  auto compact = [&](auto* offsets, auto* cells) {
+    using Id = std::remove_pointer_t<decltype(cells->GetPointer(0))>;
+    cells->SetNumberOfTuples(3 * kept);
+    offsets->SetNumberOfTuples(kept + 1);
+    Id* cellIds = cells->GetPointer(0);
+    Id* offsetIds = offsets->GetPointer(0);
+    vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType k = b; k < e; ++k)
       {
-        if (keep[t])
+        vtkIdType out = blockStart[k];
+        const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
+        for (vtkIdType t = k * blockSize; t < t1; ++t)
         {
-          std::copy(corner.get() + 3 * t, corner.get() + 3 * t + 3, cellIds + 3 * out);
-          offsetIds[out] = 3 * out;
-          ++out;
+          if (keep[t])
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              cellIds[3 * out + c] = static_cast<Id>(corner[3 * t + c]);
+            }
+            offsetIds[out] = static_cast<Id>(3 * out);
+            ++out;
+          }
         }
       }
-    }
-  });
-  offsetIds[kept] = 3 * kept;
-  corner.reset();
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, cells);
-
-  lap("triangles");
-  // Boundary edges (used by one triangle), then the edge flips towards the curvature
-  // (PiEdgeFlips.h): vertices stay, the boundary and the topology too.
-  const PiEdgeFlipResult flipped =
-    PiFlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, this->EdgeFlipRounds);
+    });
+    offsetIds[kept] = static_cast<Id>(3 * kept);
+    corner.reset();
+    polys->SetData(offsets, cells);
+    lap("triangles");
+    // Boundary edges (used by one triangle), then the edge flips towards the curvature
+    // (PiEdgeFlips.h): vertices stay, the boundary and the topology too.
+    flipped = PiFlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, this->EdgeFlipRounds);
+  };
+  if (3 * kept < VTK_INT_MAX && n < VTK_INT_MAX)
+  {
+    vtkNew<vtkTypeInt32Array> offsets, cells;
+    compact(offsets.Get(), cells.Get());
+  }
+  else
+  {
+    vtkNew<vtkTypeInt64Array> offsets, cells;
+    compact(offsets.Get(), cells.Get());
+  }
   const vtkIdType boundary = flipped.BoundaryEdges;
   if (lap.IsEnabled())
   {
