@@ -98,9 +98,42 @@ Interval Hull(const double* b, int count)
   return { lo - slack, hi + slack };
 }
 
+// De Casteljau at 1/2 for a count known at compile time: the same operations in the
+// same order as Split, the coefficients held in registers instead of stored and
+// reloaded at every step.
+template <int N>
+void SplitFixed(const double* b, double* left, double* right)
+{
+  double w[N];
+  for (int k = 0; k < N; ++k)
+  {
+    w[k] = b[k];
+  }
+  for (int r = 0; r < N; ++r)
+  {
+    left[r] = w[0];
+    right[N - 1 - r] = w[N - 1 - r];
+    for (int k = 0; k < N - 1 - r; ++k)
+    {
+      w[k] = 0.5 * (w[k] + w[k + 1]);
+    }
+  }
+}
+
 // De Casteljau at 1/2: the Bernstein coefficients of both halves.
 void Split(const double* b, int count, double* left, double* right)
 {
+  switch (count)
+  {
+    // (the degrees of common products: quadrics and quartics, a few of them)
+    case 3: return SplitFixed<3>(b, left, right);
+    case 5: return SplitFixed<5>(b, left, right);
+    case 7: return SplitFixed<7>(b, left, right);
+    case 9: return SplitFixed<9>(b, left, right);
+    case 11: return SplitFixed<11>(b, left, right);
+    case 13: return SplitFixed<13>(b, left, right);
+    default: break;
+  }
   double w[MaxDegree + 1];
   std::copy(b, b + count, w);
   for (int r = 0; r < count; ++r)
