@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiMolecule.h"
+#include "PiFloat.h"
 
 #include "PiProduct.h"  // SignOfProductMinus
 #include "PiRayRoots.h" // BracketedRoot
@@ -79,13 +80,13 @@ struct Scaled
     if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
     {
       int ex;
-      std::frexp(a, &ex);
-      this->M = std::ldexp(this->M, -ex);
+      pisurf::Frexp(a, &ex);
+      this->M = pisurf::Ldexp(this->M, -ex);
       if (gradient)
       {
         for (double& g : this->G)
         {
-          g = std::ldexp(g, -ex);
+          g = pisurf::Ldexp(g, -ex);
         }
       }
       this->E += ex;
@@ -119,7 +120,7 @@ double Finish(const Scaled& s, double level, double& logAbsF)
   if (logP > LogMax - 20)
   {
     logAbsF = logP; // level is negligible against |P| > 1e299
-    return logP > LogMax ? std::copysign(DBL_MAX, s.M) : std::ldexp(s.M, s.E) - level;
+    return logP > LogMax ? std::copysign(DBL_MAX, s.M) : pisurf::Ldexp(s.M, s.E) - level;
   }
   if (level == 0.0 && s.M != 0.0 && logP < -740)
   {
@@ -127,7 +128,7 @@ double Finish(const Scaled& s, double level, double& logAbsF)
     logAbsF = logP;
     return std::copysign(std::numeric_limits<double>::denorm_min(), s.M);
   }
-  const double F = (s.M == 0.0 ? 0.0 : std::ldexp(s.M, s.E)) - level;
+  const double F = (s.M == 0.0 ? 0.0 : pisurf::Ldexp(s.M, s.E)) - level;
   logAbsF = F == 0.0 ? -HUGE_VAL : std::log(std::fabs(F));
   return F;
 }

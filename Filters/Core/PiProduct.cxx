@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiProduct.h"
+#include "PiFloat.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -35,7 +36,7 @@ double SafeLdexp(double m, long e)
     return 0.0;
   }
   int ex;
-  std::frexp(m, &ex);
+  pisurf::Frexp(m, &ex);
   if (e + ex > DBL_MAX_EXP)
   {
     return m > 0 ? DBL_MAX : -DBL_MAX;
@@ -44,7 +45,7 @@ double SafeLdexp(double m, long e)
   {
     return 0.0;
   }
-  return std::ldexp(m, static_cast<int>(e));
+  return pisurf::Ldexp(m, static_cast<int>(e));
 }
 
 // Product P and gradient G of the factors with a shared exponent e.
@@ -63,11 +64,11 @@ struct ScaledProduct
     if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
     {
       int ex;
-      std::frexp(a, &ex);
-      f = std::ldexp(f, -ex);
+      pisurf::Frexp(a, &ex);
+      f = pisurf::Ldexp(f, -ex);
       for (double& gk : g)
       {
-        gk = std::ldexp(gk, -ex);
+        gk = pisurf::Ldexp(gk, -ex);
       }
       this->E += ex;
     }
@@ -86,11 +87,11 @@ struct ScaledProduct
     if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
     {
       int ex;
-      std::frexp(a, &ex);
-      this->P = std::ldexp(this->P, -ex);
+      pisurf::Frexp(a, &ex);
+      this->P = pisurf::Ldexp(this->P, -ex);
       for (double& gk : this->G)
       {
-        gk = std::ldexp(gk, -ex);
+        gk = pisurf::Ldexp(gk, -ex);
       }
       this->E += ex;
     }
@@ -178,7 +179,7 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   // Otherwise the chunk goes point by point through EvaluateRestricted.
   constexpr int Chunk = 32;
   const int k = std::max<int>(1, static_cast<int>(this->Factors.size()));
-  const double bound = std::ldexp(1.0, std::min(256, 1000 / k));
+  const double bound = pisurf::Ldexp(1.0, std::min(256, 1000 / k));
   const double inverse = 1.0 / bound;
   for (int start = 0; start < n; start += Chunk)
   {
@@ -241,7 +242,7 @@ inline void ProductKernel::Accumulate(double& m, long& e, double f)
   if ((af > Big || af < Small) && af != 0.0 && std::isfinite(af))
   {
     int ex;
-    f = std::frexp(f, &ex);
+    f = pisurf::Frexp(f, &ex);
     e += ex;
   }
   m *= f;
@@ -249,7 +250,7 @@ inline void ProductKernel::Accumulate(double& m, long& e, double f)
   if ((a > Big || a < Small) && a != 0.0)
   {
     int ex;
-    m = std::frexp(m, &ex);
+    m = pisurf::Frexp(m, &ex);
     e += ex;
   }
 }
@@ -261,22 +262,22 @@ static void ScaledMinus(double m, long e, double r, double& mantissa, long& expo
   int ex;
   if (m == 0.0)
   {
-    mantissa = std::frexp(-r, &ex);
+    mantissa = pisurf::Frexp(-r, &ex);
     exponent = r == 0.0 ? 0 : ex;
     return;
   }
-  m = std::frexp(m, &ex);
+  m = pisurf::Frexp(m, &ex);
   e += ex;
   long top = e;
   if (r != 0.0)
   {
     int er;
-    std::frexp(r, &er);
+    pisurf::Frexp(r, &er);
     top = std::max<long>(e, er);
   }
-  const double shift = e - top < -2100 ? 0.0 : std::ldexp(m, static_cast<int>(e - top));
-  const double F = shift - (r == 0.0 ? 0.0 : std::ldexp(r, static_cast<int>(-top)));
-  mantissa = std::frexp(F, &ex);
+  const double shift = e - top < -2100 ? 0.0 : pisurf::Ldexp(m, static_cast<int>(e - top));
+  const double F = shift - (r == 0.0 ? 0.0 : pisurf::Ldexp(r, static_cast<int>(-top)));
+  mantissa = pisurf::Frexp(F, &ex);
   exponent = F == 0.0 ? 0 : top + ex;
 }
 
@@ -291,10 +292,10 @@ double ProductKernel::Finish(double m, long e) const
     return -this->Blending;
   }
   int ex;
-  std::frexp(m, &ex);
+  pisurf::Frexp(m, &ex);
   if (std::labs(e + ex) < 960)
   {
-    return Clamp(std::ldexp(m, static_cast<int>(e)) - this->Blending);
+    return Clamp(pisurf::Ldexp(m, static_cast<int>(e)) - this->Blending);
   }
   // Far from the double range: subtract r at a common scale, then clamp.
   double fm;
@@ -371,10 +372,10 @@ double ProductKernel::EvaluateCompressed(const double p[3]) const
   int ex;
   if (m != 0.0)
   {
-    std::frexp(m, &ex);
+    pisurf::Frexp(m, &ex);
     if (std::labs(e + ex) < 960)
     {
-      const double F = std::ldexp(m, static_cast<int>(e)) - this->Blending;
+      const double F = pisurf::Ldexp(m, static_cast<int>(e)) - this->Blending;
       return std::copysign(std::log1p(std::fabs(F)), F);
     }
   }
@@ -450,7 +451,7 @@ static void FinishScaled(double m, long e, double r, double& mantissa, long& exp
   {
     int ex;
     const double F = m - r;
-    mantissa = std::frexp(F, &ex);
+    mantissa = pisurf::Frexp(F, &ex);
     exponent = F == 0.0 ? 0 : ex;
     return;
   }

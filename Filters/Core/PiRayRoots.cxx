@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiRayRoots.h"
+#include "PiFloat.h"
 
 #include "PiPolynomial.h"
 #include "PiProduct.h"
@@ -24,9 +25,9 @@ struct ScaledInterval
     if (a != 0.0 && std::isfinite(a) && (a > 0x1p256 || a < 0x1p-256))
     {
       int ex;
-      std::frexp(a, &ex);
-      this->Lo = std::ldexp(this->Lo, -ex);
-      this->Hi = std::ldexp(this->Hi, -ex);
+      pisurf::Frexp(a, &ex);
+      this->Lo = pisurf::Ldexp(this->Lo, -ex);
+      this->Hi = pisurf::Ldexp(this->Hi, -ex);
       this->E += ex;
     }
   }
@@ -38,9 +39,9 @@ struct ScaledInterval
     if (a != 0.0 && std::isfinite(a) && (a > 0x1p256 || a < 0x1p-256))
     {
       int ex;
-      std::frexp(a, &ex);
-      lo = std::ldexp(lo, -ex);
-      hi = std::ldexp(hi, -ex);
+      pisurf::Frexp(a, &ex);
+      lo = pisurf::Ldexp(lo, -ex);
+      hi = pisurf::Ldexp(hi, -ex);
       this->E += ex;
     }
     const double c[4] = { this->Lo * lo, this->Lo * hi, this->Hi * lo, this->Hi * hi };
@@ -201,10 +202,10 @@ public:
         break;
       }
       int ex;
-      m *= std::frexp(v, &ex);
+      m *= pisurf::Frexp(v, &ex);
       e += ex;
       int em;
-      m = std::frexp(m, &em);
+      m = pisurf::Frexp(m, &em);
       e += em;
     }
     double F;
@@ -218,7 +219,7 @@ public:
     }
     else if (e < 1000 && e > -1000)
     {
-      F = std::ldexp(m, static_cast<int>(e)) - this->R;
+      F = pisurf::Ldexp(m, static_cast<int>(e)) - this->R;
     }
     else
     {
@@ -305,8 +306,8 @@ public:
     {
       const ScaledInterval& t = prefix[i];
       const long shift = std::max<long>(t.E - top, -2000);
-      lo += std::ldexp(t.Lo, static_cast<int>(shift));
-      hi += std::ldexp(t.Hi, static_cast<int>(shift));
+      lo += pisurf::Ldexp(t.Lo, static_cast<int>(shift));
+      hi += pisurf::Ldexp(t.Hi, static_cast<int>(shift));
     }
     const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
     return lo - slack > 0.0 || hi + slack < 0.0;
@@ -589,13 +590,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       return false;
     }
     int e;
-    std::frexp(m, &e);
+    pisurf::Frexp(m, &e);
     if (e > 1000 || e < -1000)
     {
       return false;
     }
     exponent += e;
-    const double scale = std::ldexp(1.0, -e); // exact: multiplying by it only rescales
+    const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
     for (int k = 0; k < count; ++k)
     {
       bern[k] *= scale;
@@ -626,7 +627,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     {
       return false;
     }
-    rs = std::ldexp(r, static_cast<int>(-exponent));
+    rs = pisurf::Ldexp(r, static_cast<int>(-exponent));
     if (!(std::fabs(rs) > 1e-290) || !std::isfinite(rs))
     {
       return false;

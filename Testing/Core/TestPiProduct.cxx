@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of pisurf::ProductKernel (PiProduct.h): F = Π f_i − r and its gradient.
 #include "PiProduct.h"
+#include "PiFloat.h"
 #include "PiTestUtilities.h"
 
 #include <gtest/gtest.h>
 
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -1209,4 +1212,44 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
   check(ProductKernel(far, 1.0), p, 1e-3);
   const double o[3] = { 0, 0, 0 }, big[3] = { 1e25, 0, 0 };
   check(ProductKernel({ Sphere(o, 1.0), Sphere(big, 1.0), Plane(0, 0, 1) }, 0.25), p, 1e-2);
+}
+
+// pisurf::Frexp and pisurf::Ldexp replace std::frexp and std::ldexp in the products and
+// the ray roots: they must give the same bits for every double, the special ones too.
+TEST(Float, FrexpAndLdexpHaveTheLibraryBits)
+{
+  auto same = [](double a, double b) {
+    std::uint64_t x, y;
+    std::memcpy(&x, &a, sizeof x);
+    std::memcpy(&y, &b, sizeof y);
+    return x == y || (std::isnan(a) && std::isnan(b));
+  };
+  std::vector<double> values = { 0.0, -0.0, 1.0, -1.0, 0.5, 3.0, 1e-300, -1e300,
+    std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(),
+    -4.9e-320, std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN() };
+  std::mt19937_64 random(7);
+  for (int k = 0; k < 20000; ++k)
+  {
+    std::uint64_t bits = random();
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    values.push_back(v);
+  }
+  const int shifts[] = { 0, 1, -1, 7, -64, 300, -300, 1022, -1022, 1074, -1074, 2000, -2000 };
+  for (double v : values)
+  {
+    int e1 = 12345, e2 = 12345;
+    const double m1 = std::frexp(v, &e1), m2 = pisurf::Frexp(v, &e2);
+    ASSERT_TRUE(same(m1, m2)) << v;
+    if (std::isfinite(v))
+    {
+      ASSERT_EQ(e1, e2) << v;
+    }
+    for (int n : shifts)
+    {
+      ASSERT_TRUE(same(std::ldexp(v, n), pisurf::Ldexp(v, n))) << v << " " << n;
+    }
+  }
 }
