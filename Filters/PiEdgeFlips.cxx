@@ -218,22 +218,52 @@ template <typename Id, typename Conn>
 vtkIdType FlipMesh<Id, Conn>::Build()
 {
   // Half-edges gathered by their lower vertex (CSR). Each thread owns a range of lower
-  // vertices and reads all the triangles (cheap, sequential) to gather its own.
+  // vertices and reads the triangles (sequentially) to gather its own, skipping the
+  // blocks of triangles whose vertex ids all lie outside its range: meshes whose points
+  // are numbered in the order the triangles use them (the triangulator's) have narrow
+  // blocks, and each thread reads about its share only.
   const Id parts = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
   const Id n = this->N, h3 = 3 * this->T;
+  constexpr Id BlockSize = 4096; // triangles
+  const Id blocks = (this->T + BlockSize - 1) / BlockSize;
+  std::vector<Id> blockLow(blocks), blockHigh(blocks);
+  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      const Id h0 = static_cast<Id>(std::int64_t(3) * BlockSize * k);
+      const Id h1 = static_cast<Id>(std::min<std::int64_t>(h3, std::int64_t(3) * BlockSize * (k + 1)));
+      Id low = std::numeric_limits<Id>::max(), high = std::numeric_limits<Id>::min();
+      for (Id h = h0; h < h1; ++h)
+      {
+        low = std::min(low, static_cast<Id>(this->C[h]));
+        high = std::max(high, static_cast<Id>(this->C[h]));
+      }
+      blockLow[k] = low;
+      blockHigh[k] = high;
+    }
+  });
   auto forEachOfPart = [&](Id part, auto&& visit) {
     const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
     const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
-    for (Id h = 0; h < h3; h += 3)
+    for (Id block = 0; block < blocks; ++block)
     {
-      for (Id k = 0; k < 3; ++k)
+      if (blockHigh[block] < lo || blockLow[block] >= hi)
       {
-        const Id a = static_cast<Id>(this->C[h + k]);
-        const Id b = static_cast<Id>(this->C[h + (k == 2 ? 0 : k + 1)]);
-        const Id low = std::min(a, b);
-        if (low >= lo && low < hi)
+        continue; // (an edge's lower vertex is one of the block's ids)
+      }
+      const Id h1 =
+        static_cast<Id>(std::min<std::int64_t>(h3, std::int64_t(3) * BlockSize * (block + 1)));
+      for (Id h = static_cast<Id>(std::int64_t(3) * BlockSize * block); h < h1; h += 3)
+      {
+        for (Id k = 0; k < 3; ++k)
         {
-          visit(low, std::max(a, b), h + k);
+          const Id a = static_cast<Id>(this->C[h + k]);
+          const Id b = static_cast<Id>(this->C[h + (k == 2 ? 0 : k + 1)]);
+          const Id low = std::min(a, b);
+          if (low >= lo && low < hi)
+          {
+            visit(low, std::max(a, b), h + k);
+          }
         }
       }
     }
