@@ -1721,58 +1721,75 @@ int vtkPiImageTriangulator::RequestData(
   // it shares a triangle with a hit, or is joined to such a point by triangles of
   // computed points only (a union-find over the computed points alone).
   const vtkIdType computedCount = total - usedHits;
-  std::unique_ptr<vtkIdType[]> parent(new vtkIdType[computedCount]);
-  for (vtkIdType k = 0; k < computedCount; ++k)
-  {
-    parent[k] = k;
-  }
-  auto find = [&](vtkIdType x) {
-    while (parent[x] != x)
-    {
-      x = parent[x] = parent[parent[x]];
-    }
-    return x;
-  };
-  // (in parallel: the computed points of triangles with a hit are marked visible, the
-  // triangles of computed points only are flagged; then their unions, in order)
+  // A union-find over the computed points that all threads share: a root is linked to
+  // the smaller of the two roots by a compare-and-swap that fails if it stopped being a
+  // root meanwhile (then the union is tried again); paths are halved on the way. The
+  // components, and so the points kept, do not depend on the order of the unions.
+  std::unique_ptr<std::atomic<vtkIdType>[]> parent(new std::atomic<vtkIdType>[computedCount]);
   std::unique_ptr<std::atomic<unsigned char>[]> marked(new std::atomic<unsigned char>[computedCount]);
   vtkSMPTools::For(0, computedCount, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType k = b; k < e; ++k)
     {
+      parent[k].store(k, std::memory_order_relaxed);
       marked[k].store(0, std::memory_order_relaxed);
     }
   });
-  std::unique_ptr<unsigned char[]> computedOnly(new unsigned char[triangles]);
+  auto find = [&](vtkIdType x) {
+    for (;;)
+    {
+      vtkIdType p = parent[x].load(std::memory_order_relaxed);
+      if (p == x)
+      {
+        return x;
+      }
+      const vtkIdType g = parent[p].load(std::memory_order_relaxed);
+      if (g != p)
+      {
+        // (an ancestor stays an ancestor: a lost race only skips the halving)
+        parent[x].compare_exchange_weak(p, g, std::memory_order_relaxed);
+      }
+      x = g;
+    }
+  };
+  auto unite = [&](vtkIdType x, vtkIdType y) {
+    for (;;)
+    {
+      x = find(x);
+      y = find(y);
+      if (x == y)
+      {
+        return;
+      }
+      vtkIdType high = std::max(x, y);
+      const vtkIdType low = std::min(x, y);
+      if (parent[high].compare_exchange_strong(high, low, std::memory_order_relaxed))
+      {
+        return;
+      }
+    }
+  };
+  // The computed points of triangles with a hit are visible; triangles of computed
+  // points only join their points.
   vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType t = b; t < e; ++t)
     {
       const vtkIdType* c = corner.get() + 3 * t;
-      computedOnly[t] = c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits;
-      if (!computedOnly[t])
+      if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
       {
-        for (int k = 0; k < 3; ++k)
+        unite(c[0] - usedHits, c[1] - usedHits);
+        unite(c[0] - usedHits, c[2] - usedHits);
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        if (c[k] >= usedHits)
         {
-          if (c[k] >= usedHits)
-          {
-            marked[c[k] - usedHits].store(1, std::memory_order_relaxed);
-          }
+          marked[c[k] - usedHits].store(1, std::memory_order_relaxed);
         }
       }
     }
   });
-  for (vtkIdType t = 0; t < triangles; ++t)
-  {
-    if (computedOnly[t])
-    {
-      const vtkIdType* c = corner.get() + 3 * t;
-      for (int k = 1; k < 3; ++k)
-      {
-        const vtkIdType x = find(c[0] - usedHits), y = find(c[k] - usedHits);
-        parent[std::max(x, y)] = std::min(x, y);
-      }
-    }
-  }
-  computedOnly.reset();
+  // A component is kept if one of its points is marked (its root then is, below).
   std::vector<unsigned char> visible(computedCount, 0);
   for (vtkIdType k = 0; k < computedCount; ++k)
   {
@@ -1784,19 +1801,26 @@ int vtkPiImageTriangulator::RequestData(
   marked.reset();
   // Output points in the order the triangles first use them (rows of the lattice), so
   // that neighbouring triangles have neighbouring points: every later pass (and the
-  // user's filters) reads memory in order.
+  // user's filters) reads memory in order. newId: −1 for a point to number, −2 for a
+  // point of a dropped component (negative: not in the output, as a point no triangle
+  // uses).
   std::unique_ptr<vtkIdType[]> newId(new vtkIdType[total]);
-  vtkSMPTools::For(0, total, [&](vtkIdType b, vtkIdType e) { std::fill(&newId[b], &newId[b] + (e - b), -1); });
+  vtkSMPTools::For(0, total, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType k = b; k < e; ++k)
+    {
+      newId[k] = k < usedHits || visible[find(k - usedHits)] ? -1 : -2;
+    }
+  });
+  parent.reset();
   vtkIdType n = 0;
   for (vtkIdType c = 0; c < 3 * triangles; ++c)
   {
     const vtkIdType k = corner[c];
-    if (newId[k] < 0 && (k < usedHits || visible[find(k - usedHits)]))
+    if (newId[k] == -1)
     {
       newId[k] = n++;
     }
   }
-
   lap("components");
   // The vertices: input hits copy their attributes, computed points take them from
   // the exact gradient.
