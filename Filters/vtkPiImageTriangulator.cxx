@@ -457,41 +457,42 @@ void Triangulation::RunLattice(const Lattice& L)
   // root seen from both ends of a line) kept once.
   // (counted and filled by all threads: the order of a line's samples is then the
   // threads' order, and the sort below makes it the same every time)
-  pisurf::Buffer<vtkIdType> first;
-  first.Allocate(lines + 1);
-  first[0] = 0;
+  // first[l]: where the samples of line l start (first[lines]: their number). It counts
+  // each line's hits, becomes by the sums the end of each line, and the fill (from each
+  // end backwards) leaves it at each line's start.
+  std::unique_ptr<std::atomic<vtkIdType>[]> first(new std::atomic<vtkIdType>[lines + 1]);
   auto lineOf = [&](vtkIdType id) {
     const View& v = this->Views[this->C.ViewOf[id]];
     return L.Line(v.Axis, this->C.Pixel[2 * id] + 1, this->C.Pixel[2 * id + 1] + 1);
   };
-  std::unique_ptr<std::atomic<vtkIdType>[]> cursor(new std::atomic<vtkIdType>[lines]);
-  vtkSMPTools::For(0, lines, [&](vtkIdType b, vtkIdType e) {
+  vtkSMPTools::For(0, lines + 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType l = b; l < e; ++l)
     {
-      cursor[l].store(0, std::memory_order_relaxed);
+      first[l].store(0, std::memory_order_relaxed);
     }
   });
   vtkSMPTools::For(0, this->C.N, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType id = b; id < e; ++id)
     {
-      cursor[lineOf(id)].fetch_add(1, std::memory_order_relaxed);
+      first[lineOf(id)].fetch_add(1, std::memory_order_relaxed);
     }
   });
-  for (vtkIdType l = 0; l < lines; ++l)
+  for (vtkIdType l = 1; l < lines; ++l)
   {
-    first[l + 1] = first[l] + cursor[l].load(std::memory_order_relaxed);
-    cursor[l].store(first[l], std::memory_order_relaxed);
+    first[l].store(first[l].load(std::memory_order_relaxed) + first[l - 1].load(std::memory_order_relaxed),
+      std::memory_order_relaxed);
   }
+  first[lines].store(this->C.N, std::memory_order_relaxed);
   std::unique_ptr<Sample[]> samples(new Sample[this->C.N]);
   vtkSMPTools::For(0, this->C.N, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType id = b; id < e; ++id)
     {
       const View& v = this->Views[this->C.ViewOf[id]];
-      samples[cursor[lineOf(id)].fetch_add(1, std::memory_order_relaxed)] = { this->C.P[3 * id + v.Axis],
-        id, this->C.Tangent[id] != 0 };
+      samples[first[lineOf(id)].fetch_sub(1, std::memory_order_relaxed) - 1] = {
+        this->C.P[3 * id + v.Axis], id, this->C.Tangent[id] != 0
+      };
     }
   });
-  cursor.reset();
 
   // Which part of each line the views have not seen: all-hits views see everything;
   // a first-hit view looking along −a sees down to its first hit, one along +a up to
