@@ -536,7 +536,7 @@ void Triangulation::RunLattice(const Lattice& L)
         *this->Kernel, o, u, v, d, L.N[ua], L.N[va], L.B1[a] - L.B0[a]);
     }
   }
-  vtkSMPTools::For(0, lines, [&](vtkIdType begin, vtkIdType end) {
+  vtkSMPTools::For(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) {
     std::vector<pisurf::RayRoot> roots;
     std::vector<double> row, coefficients;
     std::vector<Sample> found;
@@ -688,7 +688,10 @@ void Triangulation::RunLattice(const Lattice& L)
   std::unique_ptr<Sample[]> line(new Sample[start[lines]]);
   const size_t base = this->Points.size();
   this->Points.resize(base + hiddenStart[lines]);
-  vtkSMPTools::For(0, lines, [&](vtkIdType lb, vtkIdType le) {
+  // (small ranges of lines: the hidden roots, whose attributes cost most here, crowd on
+  // the lines through the solid's hidden parts, and eight ranges per thread would leave
+  // one thread working alone at the end)
+  vtkSMPTools::For(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) {
     for (vtkIdType l = lb; l < le; ++l)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;

@@ -43,7 +43,8 @@
  * - AUTOMATIC (default): RAY_LATTICE when the views allow it, else BEST_VIEW.
  *
  * Output: triangles (then EdgeFlipRounds rounds of edge flips towards the curvature),
- * with the points in the order the triangles first use them; point data `Normals`
+ * with the points in the order the triangles first use them, in vtkCellArray's 32-bit
+ * storage when the point and connectivity counts fit (else 64-bit); point data `Normals`
  * (the exact unit gradient), `Singular`,
  * `ViewIndex` (the view whose ray holds the vertex), `Factor`; field data
  * `PiSurfaceModel` (passed on), `BoundaryEdges` (edges used by one triangle: 0 for a
