@@ -297,12 +297,36 @@ struct Lattice
   }
 };
 
+// A root on a lattice line: 16 bytes (a line's few samples share a cache line).
 struct Sample
 {
-  double X;           // coordinate along the line's axis
-  std::int64_t Code;  // output key
-  bool Tangent;
-  bool operator<(const Sample& o) const { return this->X < o.X || (this->X == o.X && this->Code < o.Code); }
+  double X;            // coordinate along the line's axis
+  std::int64_t Packed; // 2·(output key) + (1 if tangent); INT64_MIN: removed
+
+  Sample() = default;
+  Sample(double x, std::int64_t code, bool tangent)
+    : X(x)
+    , Packed(2 * code + (tangent ? 1 : 0))
+  {
+  }
+  // The smallest sample at x (before every sample there).
+  static Sample Lowest(double x)
+  {
+    Sample s;
+    s.X = x;
+    s.Packed = INT64_MIN;
+    return s;
+  }
+  std::int64_t Code() const { return this->Packed >> 1; }
+  bool Tangent() const { return (this->Packed & 1) != 0; }
+  bool Removed() const { return this->Packed == INT64_MIN; }
+  void Remove() { this->Packed = INT64_MIN; }
+  void SetCode(std::int64_t code) { this->Packed = 2 * code + (this->Packed & 1); }
+  // (by X, then by key: the key decides as before, since a line holds a key once)
+  bool operator<(const Sample& o) const
+  {
+    return this->X < o.X || (this->X == o.X && this->Packed < o.Packed);
+  }
 };
 
 // Reads a point array as doubles; nullptr if absent.
@@ -564,7 +588,7 @@ void Triangulation::RunLattice(const Lattice& L)
         const Sample* hit = nullptr;
         for (Sample* s = s0; s != s1; ++s)
         {
-          if (this->Views[this->C.ViewOf[s->Code]].Sense == sense)
+          if (this->Views[this->C.ViewOf[s->Code()]].Sense == sense)
           {
             if (!hit || (sense < 0 ? s->X > hit->X : s->X < hit->X))
             {
@@ -710,7 +734,7 @@ void Triangulation::RunLattice(const Lattice& L)
         c.P[(a + 2) % 3] = L.X((a + 2) % 3, static_cast<int>(k / L.N[(a + 1) % 3]) + 1);
         c.View = lineView[a];
         this->Attributes(c);
-        s.Code = c.Key;
+        s.SetCode(c.Key);
         ++index;
         *o++ = s;
       }
@@ -722,7 +746,7 @@ void Triangulation::RunLattice(const Lattice& L)
       {
         if (kept && s->X - kept->X <= tol)
         {
-          s->Code = INT64_MIN;
+          s->Remove();
           continue;
         }
         kept = s;
@@ -736,10 +760,10 @@ void Triangulation::RunLattice(const Lattice& L)
   auto firstCrossing = [&](vtkIdType l, double x0, double x1) -> const Sample* {
     const Sample* b = line.get() + start[l];
     const Sample* e = line.get() + start[l + 1];
-    const Sample* s = std::lower_bound(b, e, Sample{ x0, INT64_MIN, false });
+    const Sample* s = std::lower_bound(b, e, Sample::Lowest(x0));
     for (; s != e && s->X < x1; ++s)
     {
-      if (s->Code != INT64_MIN && !s->Tangent)
+      if (!s->Removed() && !s->Tangent())
       {
         return s;
       }
@@ -825,7 +849,7 @@ void Triangulation::RunLattice(const Lattice& L)
     for (const Sample* c = line.get() + start[l]; c != line.get() + start[l + 1]; ++c)
     {
       const int level = flipLevel(c->X);
-      if (c->Code != INT64_MIN && !c->Tangent && level < nz - 1)
+      if (!c->Removed() && !c->Tangent() && level < nz - 1)
       {
         flips.push_back(level);
       }
@@ -857,6 +881,7 @@ void Triangulation::RunLattice(const Lattice& L)
         offset[side].push_back(flips[side].size());
       }
     };
+    size_t previousRow = 0; // keys of the row before: the next one has about as many
     for (vtkIdType jj = jb; jj < je && !this->Aborted(); ++jj)
     {
       const int j = static_cast<int>(jj);
@@ -876,6 +901,7 @@ void Triangulation::RunLattice(const Lattice& L)
       }
       fillSide(1, j + 1);
       std::vector<std::int64_t>& tris = rowTriangles[j];
+      tris.reserve(previousRow + previousRow / 4);
       std::vector<Computed>& pts = rowPoints[j];
       // The vertex on the edge along axis a from node (i, jn, m): its key, position and
       // normal (an edge root is computed into `c`).
@@ -892,12 +918,13 @@ void Triangulation::RunLattice(const Lattice& L)
         {
           if (const Sample* s = firstCrossing(L.Line(a, mu, mv), L.X(a, n[a]), L.X(a, n[a] + 1)))
           {
-            if (s->Code >= 0)
+            const std::int64_t code = s->Code();
+            if (code >= 0)
             {
-              return { s->Code, C.P.data() + 3 * s->Code, C.Normal.data() + 3 * s->Code };
+              return { code, C.P.data() + 3 * code, C.Normal.data() + 3 * code };
             }
-            const Computed& h = this->Points[-s->Code - 1];
-            return { s->Code, h.P, h.N };
+            const Computed& h = this->Points[-code - 1];
+            return { code, h.P, h.N };
           }
         }
         // No line carries it (a plane of the box, or a root within 1e-10 of a node):
@@ -1080,6 +1107,7 @@ void Triangulation::RunLattice(const Lattice& L)
           m = e + 1;
         }
       }
+      previousRow = tris.size();
     }
   });
   lap("cells");
