@@ -1727,16 +1727,18 @@ int vtkPiImageTriangulator::RequestData(
                                      edgeKeys.begin());
   };
   const vtkIdType triangles = rowStart.back() / 3;
-  std::unique_ptr<vtkIdType[]> corner(new vtkIdType[rowStart.back()]);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
+  // The corners: each row's keys become point ids in place (no second array of all the
+  // corners: its fresh pages would cost as much as filling it). The passes below go
+  // through the rows; triangle t of the whole list is triangle t − rowStart[r] / 3 of
+  // its row r.
+  const vtkIdType rows = static_cast<vtkIdType>(T.Rows.size());
+  vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType r = b; r < e; ++r)
     {
-      vtkIdType* out = corner.get() + rowStart[r];
-      for (std::int64_t key : T.Rows[r])
+      for (std::int64_t& key : T.Rows[r])
       {
-        *out++ = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
+        key = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
       }
-      std::vector<std::int64_t>().swap(T.Rows[r]);
     }
   });
   const vtkIdType total = usedHits + static_cast<vtkIdType>(T.Points.size());
@@ -1802,21 +1804,25 @@ int vtkPiImageTriangulator::RequestData(
   };
   // The computed points of triangles with a hit are visible; triangles of computed
   // points only join their points.
-  vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType t = b; t < e; ++t)
+  vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType r = b; r < e; ++r)
     {
-      const vtkIdType* c = corner.get() + 3 * t;
-      if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
+      const std::vector<std::int64_t>& row = T.Rows[r];
+      for (size_t q = 0; q < row.size(); q += 3)
       {
-        unite(c[0] - usedHits, c[1] - usedHits);
-        unite(c[0] - usedHits, c[2] - usedHits);
-        continue;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        if (c[k] >= usedHits)
+        const std::int64_t* c = row.data() + q;
+        if (c[0] >= usedHits && c[1] >= usedHits && c[2] >= usedHits)
         {
-          marked[c[k] - usedHits].store(1, std::memory_order_relaxed);
+          unite(c[0] - usedHits, c[1] - usedHits);
+          unite(c[0] - usedHits, c[2] - usedHits);
+          continue;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          if (c[k] >= usedHits)
+          {
+            marked[c[k] - usedHits].store(1, std::memory_order_relaxed);
+          }
         }
       }
     }
@@ -1845,12 +1851,14 @@ int vtkPiImageTriangulator::RequestData(
   });
   parent.reset();
   vtkIdType n = 0;
-  for (vtkIdType c = 0; c < 3 * triangles; ++c)
+  for (const std::vector<std::int64_t>& row : T.Rows)
   {
-    const vtkIdType k = corner[c];
-    if (newId[k] == -1)
+    for (const std::int64_t k : row)
     {
-      newId[k] = n++;
+      if (newId[k] == -1)
+      {
+        newId[k] = n++;
+      }
     }
   }
   lap("components");
@@ -1921,55 +1929,56 @@ int vtkPiImageTriangulator::RequestData(
   // Triangles, oriented so that their normals agree with the exact gradient (outward);
   // degenerate ones (two corners on one hit) are dropped.
   std::unique_ptr<unsigned char[]> keep(new unsigned char[triangles]);
-  vtkSMPTools::For(0, triangles, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType t = b; t < e; ++t)
+  vtkSMPTools::For(0, rows, [&](vtkIdType rb, vtkIdType re) {
+    for (vtkIdType r = rb; r < re; ++r)
     {
-      keep[t] = 0;
-      vtkIdType id[3];
-      for (int c = 0; c < 3; ++c)
+      for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t)
       {
-        id[c] = newId[corner[3 * t + c]];
-      }
-      if (id[0] < 0 || id[0] == id[1] || id[1] == id[2] || id[0] == id[2])
-      {
-        continue;
-      }
-      double u[3], v[3], nt[3], average[3] = { 0, 0, 0 };
-      const double* p0 = xyz + 3 * id[0];
-      for (int k = 0; k < 3; ++k)
-      {
-        u[k] = xyz[3 * id[1] + k] - p0[k];
-        v[k] = xyz[3 * id[2] + k] - p0[k];
+        std::int64_t* corner = T.Rows[r].data() + (3 * t - rowStart[r]);
+        keep[t] = 0;
+        vtkIdType id[3];
         for (int c = 0; c < 3; ++c)
         {
-          average[k] += nrmOut[3 * id[c] + k];
+          id[c] = newId[corner[c]];
         }
+        if (id[0] < 0 || id[0] == id[1] || id[1] == id[2] || id[0] == id[2])
+        {
+          continue;
+        }
+        double u[3], v[3], nt[3], average[3] = { 0, 0, 0 };
+        const double* p0 = xyz + 3 * id[0];
+        for (int k = 0; k < 3; ++k)
+        {
+          u[k] = xyz[3 * id[1] + k] - p0[k];
+          v[k] = xyz[3 * id[2] + k] - p0[k];
+          for (int c = 0; c < 3; ++c)
+          {
+            average[k] += nrmOut[3 * id[c] + k];
+          }
+        }
+        vtkMath::Cross(u, v, nt);
+        if (vtkMath::Dot(nt, average) < 0)
+        {
+          std::swap(id[1], id[2]);
+        }
+        std::copy(id, id + 3, corner);
+        keep[t] = 1;
       }
-      vtkMath::Cross(u, v, nt);
-      if (vtkMath::Dot(nt, average) < 0)
-      {
-        std::swap(id[1], id[2]);
-      }
-      std::copy(id, id + 3, corner.get() + 3 * t);
-      keep[t] = 1;
     }
   });
-  // The kept triangles, compacted in parallel: counted per block, then copied.
-  const vtkIdType blockSize = 1 << 16;
-  const vtkIdType blocks = (triangles + blockSize - 1) / blockSize;
-  std::vector<vtkIdType> blockStart(blocks + 1, 0);
-  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  // The kept triangles, compacted in parallel: counted per row, then copied.
+  std::vector<vtkIdType> blockStart(rows + 1, 0);
+  vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType r = b; r < e; ++r)
     {
-      const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
-      blockStart[k + 1] = std::count(keep.get() + k * blockSize, keep.get() + t1, 1);
+      blockStart[r + 1] = std::count(keep.get() + rowStart[r] / 3, keep.get() + rowStart[r + 1] / 3, 1);
     }
   });
-  for (vtkIdType k = 0; k < blocks; ++k)
+  for (vtkIdType r = 0; r < rows; ++r)
   {
-    blockStart[k + 1] += blockStart[k];
+    blockStart[r + 1] += blockStart[r];
   }
-  const vtkIdType kept = blockStart[blocks];
+  const vtkIdType kept = blockStart[rows];
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory of
   // 64-bit ids for the flips below and every filter downstream), else 64-bit.
   vtkNew<vtkCellArray> polys;
@@ -1980,27 +1989,27 @@ int vtkPiImageTriangulator::RequestData(
     offsets->SetNumberOfTuples(kept + 1);
     Id* cellIds = cells->GetPointer(0);
     Id* offsetIds = offsets->GetPointer(0);
-    vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType k = b; k < e; ++k)
+    vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType r = b; r < e; ++r)
       {
-        vtkIdType out = blockStart[k];
-        const vtkIdType t1 = std::min(triangles, (k + 1) * blockSize);
-        for (vtkIdType t = k * blockSize; t < t1; ++t)
+        vtkIdType out = blockStart[r];
+        const std::int64_t* corner = T.Rows[r].data();
+        for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t, corner += 3)
         {
           if (keep[t])
           {
             for (int c = 0; c < 3; ++c)
             {
-              cellIds[3 * out + c] = static_cast<Id>(corner[3 * t + c]);
+              cellIds[3 * out + c] = static_cast<Id>(corner[c]);
             }
             offsetIds[out] = static_cast<Id>(3 * out);
             ++out;
           }
         }
+        std::vector<std::int64_t>().swap(T.Rows[r]);
       }
     });
     offsetIds[kept] = static_cast<Id>(3 * kept);
-    corner.reset();
     polys->SetData(offsets, cells);
     lap("triangles");
     // Boundary edges (used by one triangle), then the edge flips towards the curvature
