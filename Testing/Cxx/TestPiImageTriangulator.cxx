@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkPiImageTriangulator: closed manifold meshes with the right Euler characteristic
 // from six axis views, exact vertices, area against flying edges, silhouettes never
-// bridged, the crease and the apex kept, hidden shells, the source's Method, bad input.
+// bridged, the crease and the apex kept, hidden shells, edge flips (also on 64- and
+// 32-bit ids), the source's Method, bad input.
+#include "PiEdgeFlips.h"
 #include "PiTestUtilities.h"
 
 #include "vtkPiFlyingEdges.h"
@@ -14,7 +16,9 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMassProperties.h"
 #include "vtkPointData.h"
@@ -25,6 +29,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -388,6 +393,20 @@ int TestPiImageTriangulator(int, char*[])
     };
     double previous = 0;
     std::vector<std::array<double, 3>> points;
+    std::vector<vtkIdType> once, thrice; // connectivity after 1 and 3 rounds
+    auto connectivity = [](vtkPolyData* mesh) {
+      std::vector<vtkIdType> ids;
+      vtkIdType n;
+      const vtkIdType* cell;
+      auto polys = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+      for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+      {
+        polys->GetCurrentCell(n, cell);
+        ids.insert(ids.end(), cell, cell + n);
+      }
+      return ids;
+    };
+    vtkSmartPointer<vtkPolyData> first;
     for (int rounds : { 0, 1, 3 })
     {
       vtkNew<vtkPiImageTriangulator> triangulator;
@@ -395,6 +414,17 @@ int TestPiImageTriangulator(int, char*[])
       triangulator->SetEdgeFlipRounds(rounds);
       triangulator->Update();
       vtkPolyData* mesh = triangulator->GetOutput();
+      // (ids that fit 32 bits: vtkCellArray's 32-bit storage, as documented)
+      PI_CHECK(!mesh->GetPolys()->IsStorage64Bit());
+      if (rounds == 1)
+      {
+        once = connectivity(mesh);
+        first = mesh;
+      }
+      else if (rounds == 3)
+      {
+        thrice = connectivity(mesh);
+      }
       const Topology t = Measure(mesh);
       const double rms = centroidRms(mesh);
       std::cout << "cup, " << rounds << " flip rounds: centroid RMS " << rms << ", chi "
@@ -410,6 +440,29 @@ int TestPiImageTriangulator(int, char*[])
         PI_CHECK(rms < 0.95 * previous);
       }
       previous = rms;
+    }
+    // The flips themselves on 64-bit and on 32-bit connectivity (the triangulator takes
+    // 64-bit storage for meshes whose ids do not fit 32 bits): two more rounds on the
+    // one-round mesh give the triangulator's own three-round mesh, with either type
+    // (the same points in the same order: the flips come after the numbering).
+    auto* xyz = vtkDoubleArray::SafeDownCast(first->GetPoints()->GetData());
+    auto* normals = vtkFloatArray::SafeDownCast(first->GetPointData()->GetNormals());
+    PI_CHECK(xyz && normals);
+    if (xyz && normals)
+    {
+      std::vector<vtkIdType> wide = once;
+      std::vector<std::int32_t> narrow(once.begin(), once.end());
+      const vtkIdType triangles = static_cast<vtkIdType>(once.size() / 3);
+      const vtkIdType n = first->GetNumberOfPoints();
+      const PiEdgeFlipResult a =
+        PiFlipEdgesToCurvature(wide.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
+      const PiEdgeFlipResult c = PiFlipEdgesToCurvature(
+        narrow.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
+      std::cout << "cup, flips on 64- and 32-bit ids: " << a.Flips << " and " << c.Flips
+                << " edges\n";
+      PI_CHECK(a.Flips > 0 && a.Flips == c.Flips && a.BoundaryEdges == 0 && c.BoundaryEdges == 0);
+      PI_CHECK(wide != once && wide == thrice);
+      PI_CHECK(std::equal(narrow.begin(), narrow.end(), thrice.begin(), thrice.end()));
     }
   }
 
