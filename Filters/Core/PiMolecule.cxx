@@ -156,6 +156,13 @@ double FarthestDistance2(const double c[3], const double box[6])
   return d2;
 }
 
+// w(u) = 1 − smoothstep5(u) = 1 − u³(10 − 15u + 6u²) for u in [0, 1], as Weight and
+// LocalTerm write it (the same expression: the same bits).
+inline double WeightPolynomial(double u)
+{
+  return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+}
+
 // The Local weight w(u) = 1 − smoothstep5(u) on [0, 1] and its derivative.
 inline double Weight(double u, double& derivative)
 {
@@ -170,7 +177,7 @@ inline double Weight(double u, double& derivative)
     return 0.0;
   }
   derivative = -30.0 * u * u * (1.0 - u) * (1.0 - u);
-  return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+  return WeightPolynomial(u);
 }
 // The Local factor g of an atom at squared distance d2 from its centre, as the product
 // of F multiplies it (1 beyond ρ; f itself inside the sphere): the one expression of
@@ -179,7 +186,7 @@ inline double LocalTerm(double d2, double r2, double rho2, double inverseSpan)
 {
   const double f = d2 - r2;
   const double u = f * inverseSpan;
-  const double w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+  const double w = WeightPolynomial(u);
   const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
   return d2 < rho2 ? g : 1.0;
 }
