@@ -156,6 +156,47 @@ struct Evaluator
   {
     return this->Field ? this->Field->ClassifyBox(box) : this->Kernel->ClassifyBox(box);
   }
+  // A block: ClassifyBox, and where that cannot decide, its octants (enclosures
+  // tighten on smaller boxes: if all eight exclude the surface, so does the block, F
+  // having no zero in it and so one sign throughout).
+  int ClassifyBlock(const double box[6]) const
+  {
+    int octants[8];
+    int sign = 0;
+    if (this->Field)
+    {
+      sign = this->Field->ClassifyBox(box);
+      for (int o = 0; o < 8 && sign == 0; ++o)
+      {
+        double sub[6];
+        for (int a = 0; a < 3; ++a)
+        {
+          const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
+          sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
+          sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
+        }
+        octants[o] = this->Field->ClassifyBox(sub);
+        if (octants[o] == 0)
+        {
+          return 0;
+        }
+      }
+      return sign != 0 ? sign : octants[7];
+    }
+    sign = this->Kernel->ClassifyBoxAndOctants(box, octants);
+    if (sign != 0)
+    {
+      return sign;
+    }
+    for (int o = 0; o < 8; ++o)
+    {
+      if (octants[o] == 0)
+      {
+        return 0;
+      }
+    }
+    return octants[0];
+  }
   double Evaluate(const double p[3]) const
   {
     return this->Field ? this->Field->Evaluate(p) : this->Kernel->Evaluate(p);
@@ -307,26 +348,7 @@ struct ClassifyBlocks
         box[2 * a] = this->G->Origin[a] + this->G->First(c, a) * this->G->Spacing[a];
         box[2 * a + 1] = this->G->Origin[a] + this->G->Last(c, a) * this->G->Spacing[a];
       }
-      int sign = this->Kernel->ClassifyBox(box);
-      if (sign == 0)
-      {
-        // Enclosures tighten on smaller boxes: if all eight octants exclude the surface,
-        // so does the block (F has no zero in it, so one sign throughout).
-        sign = 2;
-        for (int o = 0; o < 8 && sign != 0; ++o)
-        {
-          double sub[6];
-          for (int a = 0; a < 3; ++a)
-          {
-            const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
-            sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
-            sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
-          }
-          const int s = this->Kernel->ClassifyBox(sub);
-          sign = s == 0 ? 0 : s;
-        }
-      }
-      this->G->Sign[b] = static_cast<signed char>(sign);
+      this->G->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBlock(box));
     }
   }
 };
@@ -1503,7 +1525,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
 
   // PASS 1: classify the blocks, coarse to fine: groups of 4³ blocks first, then the
-  // blocks of the groups the surface may cross (value 2 marks "still to classify").
+  // 2³-block quarters of the undecided groups, then the blocks the surface may cross
+  // (value 2 marks "still to classify").
   g.Sign.assign(vtkIdType(g.Count[0]) * g.Count[1] * g.Count[2], 0);
   {
     const int group = 4;
@@ -1535,6 +1558,40 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
             {
               g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(sign == 0 ? 2 : sign);
             }
+        if (sign != 0)
+        {
+          continue;
+        }
+        // An undecided group: its eight sub-groups of 2³ blocks, whose tighter
+        // enclosures decide many more blocks at once.
+        for (int o = 0; o < 8; ++o)
+        {
+          int sublo[3], subhi[3];
+          double sub[6];
+          for (int a = 0; a < 3; ++a)
+          {
+            sublo[a] = lo[a] + ((o >> a) & 1) * (group / 2);
+            subhi[a] = std::min(sublo[a] + group / 2, hi[a]);
+            sub[2 * a] = g.Origin[a] + sublo[a] * BlockCells * g.Spacing[a];
+            sub[2 * a + 1] =
+              g.Origin[a] + std::min(subhi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
+          }
+          if (sublo[0] >= subhi[0] || sublo[1] >= subhi[1] || sublo[2] >= subhi[2])
+          {
+            continue;
+          }
+          const int subSign = evaluator.ClassifyBox(sub);
+          if (subSign == 0)
+          {
+            continue;
+          }
+          for (int z = sublo[2]; z < subhi[2]; ++z)
+            for (int y = sublo[1]; y < subhi[1]; ++y)
+              for (int x = sublo[0]; x < subhi[0]; ++x)
+              {
+                g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(subSign);
+              }
+        }
       }
     });
   }
@@ -1561,7 +1618,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   lap("classify");
   if (lap.IsEnabled())
   {
-    std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active\n";
+    std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active ("
+              << undecided.size() << " left undecided by their groups)\n";
   }
 
   // PASS 2: restrict the factors to the rows the active blocks need.
@@ -1614,6 +1672,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
     vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
   }
+  lap("restrict rows");
 
   // PASS 3: evaluate the points of the active blocks.
   // Every entry is written below: no need to clear.
@@ -1686,6 +1745,16 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   contour.SlabEnd = slabEnd;
   vtkSMPTools::For(0, activeCount, contour);
   vtkIdType vertices = 0, triangles = 0;
+  if (lap.IsEnabled())
+  {
+    // How many active blocks the enclosures could not rule out but hold no surface.
+    vtkIdType crossed = 0;
+    for (vtkIdType s = 0; s < activeCount; ++s)
+    {
+      crossed += vertexCount[s] > 0 || triangleCount[s] > 0;
+    }
+    std::cerr << crossed << " of " << activeCount << " active blocks hold the surface\n";
+  }
   for (vtkIdType s = 0; s < activeCount; ++s)
   {
     int c[3];

@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace pisurf
@@ -367,10 +368,17 @@ bool ParseExpression(const std::string& text, const ParameterMap& parameters,
 
 namespace
 {
-// Outward rounding: one ulp beyond each end (a rounded +, − or × is within half an ulp).
+// Outward rounding: at least one ulp beyond each end (a rounded +, − or × is within half
+// an ulp). |x|·ε is at least one ulp of x, so x ∓ (|x|·ε + the smallest subnormal)
+// rounds to a double at or beyond the next one: a little wider than nextafter, without
+// its library call.
 Interval Outward(double lo, double hi)
 {
-  return { std::nextafter(lo, -HUGE_VAL), std::nextafter(hi, HUGE_VAL) };
+  constexpr double Tiny = std::numeric_limits<double>::denorm_min();
+  // (An infinite end stays as nextafter leaves it: −inf, or DBL_MAX below +inf.)
+  lo = lo == HUGE_VAL ? DBL_MAX : lo - (std::fabs(lo) * DBL_EPSILON + Tiny);
+  hi = hi == -HUGE_VAL ? -DBL_MAX : hi + (std::fabs(hi) * DBL_EPSILON + Tiny);
+  return { lo, hi };
 }
 // x^n by IntegerPower (at most 2·log2(n) + 1 roundings), widened by 2n ulps relative.
 double PowerDown(double x, int n)

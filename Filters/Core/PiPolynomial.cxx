@@ -588,6 +588,67 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
   }
 }
 
+int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) const
+{
+  const int n = this->Degree;
+  if (n < 0 || n > TaylorMaxDegree)
+  {
+    return -1;
+  }
+  const int m = n + 1;
+  std::fill(b, b + m * m * m, 0.0);
+  for (const auto& t : this->Terms)
+  {
+    b[(t.I * m + t.J) * m + t.K] = t.Coefficient;
+  }
+  // One axis at a time: every line of coefficients along the axis is a univariate
+  // polynomial of degree n − (the other two powers), shifted to c by repeated synthetic
+  // division, then scaled by h^l.
+  const int stride[3] = { m * m, m, 1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    const int u = (a + 1) % 3, w = (a + 2) % 3;
+    const double s = c[a], scale = h[a];
+    for (int pu = 0; pu <= n; ++pu)
+    {
+      for (int pw = 0; pw + pu <= n; ++pw)
+      {
+        double* line = b + pu * stride[u] + pw * stride[w];
+        const int deg = n - pu - pw;
+        const int st = stride[a];
+        if (s != 0.0)
+        {
+          for (int i = 0; i < deg; ++i)
+          {
+            for (int l = deg - 1; l >= i; --l)
+            {
+              line[l * st] += s * line[(l + 1) * st];
+            }
+          }
+        }
+        double power = scale;
+        for (int l = 1; l <= deg; ++l)
+        {
+          line[l * st] *= power;
+          power *= scale;
+        }
+      }
+    }
+  }
+  return n;
+}
+
+Polynomial3 Polynomial3::Absolute() const
+{
+  Polynomial3 r = *this;
+  for (auto& t : r.Terms)
+  {
+    t.Coefficient = std::fabs(t.Coefficient);
+  }
+  r.Finish();
+  return r;
+}
+
 Polynomial3 Polynomial3::Compose(const double A[3][3], const double b[3]) const
 {
   Polynomial3 q[3];

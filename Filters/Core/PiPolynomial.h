@@ -20,6 +20,9 @@ namespace pisurf
 /// (a degree-64 trivariate polynomial already has ~48k monomials).
 constexpr int MaxDegree = 64;
 
+/// The highest degree ExpandAbout handles (dense (n+1)³ coefficients on the stack).
+constexpr int TaylorMaxDegree = 8;
+
 /// A closed interval [Lo, Hi] of reals.
 struct Interval
 {
@@ -89,6 +92,15 @@ public:
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
   /// The same into out[0..degree] without allocating (hot path of grid sampling).
   void RestrictToLine(const double o[3], const double d[3], double* out) const;
+  /// The coefficients of u -> P(c + h∘u) (a Taylor shift to c on each axis, then the
+  /// scaling by h), dense: b[(i·(n+1) + j)·(n+1) + k] multiplies u^i v^j w^k, n the
+  /// degree (entries with i+j+k > n are 0). Needs (n+1)³ doubles at b. Returns n, or −1
+  /// (nothing written) for the zero polynomial or a degree above TaylorMaxDegree.
+  /// Cost: O(n⁴). Each coefficient is within (3n+3)·ε of the same computation on |P|
+  /// at |c|, |h| (the caller's rounding bound: RoundingBound of P's magnitude).
+  int ExpandAbout(const double c[3], const double h[3], double* b) const;
+  /// The polynomial of the coefficients' absolute values (magnitude bounds).
+  Polynomial3 Absolute() const;
   /// Substitutes the affine map q = A·p + b (q is this polynomial's variable).
   Polynomial3 Compose(const double A[3][3], const double b[3]) const;
 

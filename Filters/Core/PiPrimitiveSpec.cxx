@@ -2,6 +2,7 @@
 #include "PiPrimitiveSpec.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -186,10 +187,9 @@ void PolynomialFactor::EvaluateStar(const double p[3], double h, double values[7
   }
 }
 
-Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
+void PolynomialFactor::LocalBox(const double box[6], Interval local[3]) const
 {
   // The local box of the affine image: centre mapped, half extents through |A|.
-  Interval local[3];
   for (int i = 0; i < 3; ++i)
   {
     double c = this->B[i], h = 0.0;
@@ -201,20 +201,31 @@ Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
     h += 1e-15 * (std::fabs(c) + h);
     local[i] = { c - h, c + h };
   }
+}
+
+Interval PolynomialFactor::NaturalInterval(const Interval local[3], double magnitude) const
+{
+  // The expression as written encloses the exact value; the expanded polynomial's
+  // computed values may differ from it by their rounding (terms that cancel), so the
+  // natural enclosure is widened by that.
+  const Interval n = pisurf::EvaluateInterval(*this->Natural, local);
+  const double a = this->NaturalScale * n.Lo, b = this->NaturalScale * n.Hi;
+  const double slack =
+    std::max(1e-12 * (std::fabs(a) + std::fabs(b)), this->Poly.RoundingBound(magnitude)) + 1e-300;
+  return { std::min(a, b) - slack, std::max(a, b) + slack };
+}
+
+Interval PolynomialFactor::EvaluateInterval(const double box[6]) const
+{
+  Interval local[3];
+  this->LocalBox(box, local);
   double magnitude = 0.0;
   Interval naive = this->Poly.EvaluateInterval(local, &magnitude);
   if (this->Natural)
   {
-    // The expression as written encloses the exact value; the expanded polynomial's
-    // computed values may differ from it by their rounding (terms that cancel), so the
-    // natural enclosure is widened by that before it narrows the naive one.
-    const Interval n = pisurf::EvaluateInterval(*this->Natural, local);
-    const double a = this->NaturalScale * n.Lo, b = this->NaturalScale * n.Hi;
-    const double slack = std::max(1e-12 * (std::fabs(a) + std::fabs(b)),
-                           this->Poly.RoundingBound(magnitude)) +
-      1e-300;
-    naive.Lo = std::max(naive.Lo, std::min(a, b) - slack);
-    naive.Hi = std::min(naive.Hi, std::max(a, b) + slack);
+    const Interval n = this->NaturalInterval(local, magnitude);
+    naive.Lo = std::max(naive.Lo, n.Lo);
+    naive.Hi = std::min(naive.Hi, n.Hi);
   }
   if (!this->HasGradient)
   {
@@ -246,6 +257,200 @@ void PolynomialFactor::PrepareIntervals()
     this->Gradient[i] = this->Poly.Derivative(i);
   }
   this->HasGradient = true;
+  this->HasWorld = false;
+  if (this->Poly.GetDegree() >= 0 && this->Poly.GetDegree() <= TaylorMaxDegree)
+  {
+    double absA[3][3], absB[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      absB[i] = std::fabs(this->B[i]);
+      for (int j = 0; j < 3; ++j)
+      {
+        absA[i][j] = std::fabs(this->A[i][j]);
+      }
+    }
+    this->World = this->Poly.Compose(this->A, this->B);
+    this->WorldMagnitude = this->Poly.Absolute().Compose(absA, absB);
+    this->HasWorld = this->World.GetDegree() >= 0 && this->World.IsFinite() &&
+      this->WorldMagnitude.IsFinite();
+  }
+}
+
+bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Interval* octants) const
+{
+  if (!this->HasWorld)
+  {
+    return false;
+  }
+  constexpr int M = TaylorMaxDegree + 1;
+  double b[M * M * M];
+  double c[3], h[3], reach[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = 0.5 * (box[2 * a] + box[2 * a + 1]);
+    // c ± h covers the box despite the rounding of c and h.
+    h[a] = std::max(box[2 * a + 1] - c[a], c[a] - box[2 * a]) * (1.0 + 4.0 * DBL_EPSILON);
+    reach[a] = std::fabs(c[a]) + h[a];
+  }
+  const int n = this->World.ExpandAbout(c, h, b);
+  if (n < 0)
+  {
+    return false;
+  }
+  const int m = n + 1;
+  // Every term's magnitude over the box, in our evaluations (local form: |q| <= |A||p| +
+  // |B|) and in the expansions (World and its shift): at most WorldMagnitude(|c| + h).
+  const double magnitude = this->WorldMagnitude.Evaluate(reach) * (1.0 + 1e-12);
+  const double rounding =
+    this->Poly.RoundingBound(magnitude) + this->World.RoundingBound(magnitude) + 1e-300;
+  // The pure powers of one axis with degree <= 2 (b₁u + b₂u²: most of a quadric) are
+  // bounded exactly on [−1, 1] and on each half, by their ends and vertex; every other
+  // term by its own range.
+  const int stride[3] = { m * m, m, 1 };
+  bool exact[3];
+  double axisLo[3][3], axisHi[3][3]; // per axis: on [−1, 0], [0, 1], [−1, 1]
+  for (int a = 0; a < 3; ++a)
+  {
+    exact[a] = true;
+    for (int l = 3; l <= n; ++l)
+    {
+      exact[a] = exact[a] && b[l * stride[a]] == 0.0;
+    }
+    const double g = n >= 1 ? b[stride[a]] : 0.0, q = n >= 2 ? b[2 * stride[a]] : 0.0;
+    const double ends[3][2] = { { -1.0, 0.0 }, { 0.0, 1.0 }, { -1.0, 1.0 } };
+    for (int part = 0; part < 3; ++part)
+    {
+      const double s = ends[part][0], t = ends[part][1];
+      const double vs = g * s + q * s * s, vt = g * t + q * t * t;
+      axisLo[a][part] = std::min(vs, vt);
+      axisHi[a][part] = std::max(vs, vt);
+      if (q != 0.0)
+      {
+        const double v = -g / (2.0 * q);
+        if (v > s && v < t)
+        {
+          const double w = g * v + q * v * v;
+          axisLo[a][part] = std::min(axisLo[a][part], w);
+          axisHi[a][part] = std::max(axisHi[a][part], w);
+        }
+      }
+    }
+  }
+  double lo = b[0], hi = b[0];
+  double olo[8], ohi[8];
+  for (int a = 0; a < 3; ++a)
+  {
+    if (exact[a])
+    {
+      lo += axisLo[a][2];
+      hi += axisHi[a][2];
+    }
+  }
+  for (int o = 0; o < 8; ++o)
+  {
+    olo[o] = ohi[o] = b[0];
+    for (int a = 0; a < 3; ++a)
+    {
+      if (exact[a])
+      {
+        olo[o] += axisLo[a][(o >> a) & 1];
+        ohi[o] += axisHi[a][(o >> a) & 1];
+      }
+    }
+  }
+  for (int i = 0; i <= n; ++i)
+  {
+    for (int j = 0; i + j <= n; ++j)
+    {
+      for (int k = (i + j == 0 ? 1 : 0); i + j + k <= n; ++k)
+      {
+        const double v = b[(i * m + j) * m + k];
+        if (v == 0.0)
+        {
+          continue;
+        }
+        // A pure power of one axis already bounded exactly?
+        const int axes = (i > 0) + (j > 0) + (k > 0);
+        if (axes == 1)
+        {
+          const int a = i > 0 ? 0 : j > 0 ? 1 : 2;
+          if (exact[a])
+          {
+            continue;
+          }
+        }
+        if (((i | j | k) & 1) == 0)
+        {
+          // u^α ∈ [0, 1] everywhere, in every octant.
+          lo += std::min(v, 0.0);
+          hi += std::max(v, 0.0);
+          if (octants)
+          {
+            for (int o = 0; o < 8; ++o)
+            {
+              olo[o] += std::min(v, 0.0);
+              ohi[o] += std::max(v, 0.0);
+            }
+          }
+          continue;
+        }
+        lo -= std::fabs(v);
+        hi += std::fabs(v);
+        if (octants)
+        {
+          // In octant o, u^α has the sign Π (−1)^α_a over the lower halves.
+          const int odd = (i & 1) | (j & 1) << 1 | (k & 1) << 2;
+          for (int o = 0; o < 8; ++o)
+          {
+            const bool negative = __builtin_parity(odd & ~o);
+            const double s = negative ? -v : v;
+            olo[o] += std::min(s, 0.0);
+            ohi[o] += std::max(s, 0.0);
+          }
+        }
+      }
+    }
+  }
+  auto widen = [rounding](double l, double u) {
+    const double slack = std::max(1e-12 * (std::fabs(l) + std::fabs(u)), rounding);
+    return Interval{ l - slack, u + slack };
+  };
+  whole = widen(lo, hi);
+  if (octants)
+  {
+    for (int o = 0; o < 8; ++o)
+    {
+      octants[o] = widen(olo[o], ohi[o]);
+    }
+  }
+  if (this->Natural && n > 2)
+  {
+    // Above degree 2 the expression as written can be tighter (the table top's
+    // (8z+5)^6, whose terms the expansion bounds one by one): intersect with it, and on
+    // the octants too where it was tighter on the whole box.
+    Interval local[3];
+    this->LocalBox(box, local);
+    const Interval natural = this->NaturalInterval(local, magnitude);
+    if (natural.Hi - natural.Lo < whole.Hi - whole.Lo)
+    {
+      whole.Lo = std::max(whole.Lo, natural.Lo);
+      whole.Hi = std::min(whole.Hi, natural.Hi);
+      for (int o = 0; octants && o < 8; ++o)
+      {
+        double sub[6];
+        for (int a = 0; a < 3; ++a)
+        {
+          sub[2 * a] = (o >> a) & 1 ? c[a] : box[2 * a];
+          sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : c[a];
+        }
+        this->LocalBox(sub, local);
+        const Interval part = this->NaturalInterval(local, magnitude);
+        octants[o].Lo = std::max(octants[o].Lo, part.Lo);
+        octants[o].Hi = std::min(octants[o].Hi, part.Hi);
+      }
+    }
+  }
+  return true;
 }
 
 std::vector<double> PolynomialFactor::RestrictToLine(const double o[3], const double d[3]) const

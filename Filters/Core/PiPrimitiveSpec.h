@@ -99,6 +99,11 @@ struct PolynomialFactor
   /// ∂Poly/∂u, ∂v, ∂w: filled by PrepareIntervals() for the mean-value enclosure.
   Polynomial3 Gradient[3];
   bool HasGradient = false;
+  /// Poly composed with the affine map (world coordinates) and the same composition of
+  /// the coefficients' absolute values (a bound on every term's magnitude): filled by
+  /// PrepareIntervals() when the degree is at most TaylorMaxDegree, for EvaluateTaylor.
+  Polynomial3 World, WorldMagnitude;
+  bool HasWorld = false;
 
   /// Precomputes what EvaluateInterval needs for its tighter (mean-value) enclosure.
   void PrepareIntervals();
@@ -126,6 +131,23 @@ struct PolynomialFactor
   /// intersection of the term-wise interval evaluation and, after PrepareIntervals(),
   /// the mean-value form f(c) + Σ ∂f(box)·[−h, h], whose width shrinks as h².
   Interval EvaluateInterval(const double box[6]) const;
+  /// Enclosures of f over the box and, when `octants` is not null, over its eight
+  /// octants (octant o is the upper half [c, hi] on axis a when bit a of o is set, the
+  /// lower half [lo, c] otherwise, c = (lo + hi)/2 as computed), from one Taylor
+  /// expansion of World about c: f(c + h∘u) = Σ b_α u^α, u ∈ [−1, 1]³, so each term
+  /// ranges over ±|b_α| (over [0, b_α] when every power is even; over 0 and ±b_α with
+  /// the octant's signs). The width shrinks with the box like |∇f|·h, without the
+  /// cancellation of the monomial form far from the origin. Widened like
+  /// EvaluateInterval by the rounding of our evaluations and of the expansions, bounded
+  /// by the magnitude WorldMagnitude(|c| + h). False (nothing written) when
+  /// PrepareIntervals() did not fill World. Cost: O(degree⁴) for the expansion, then
+  /// O(terms) per octant.
+  bool EvaluateTaylor(const double box[6], Interval& whole, Interval* octants) const;
+  /// The local box (an enclosure of the affine image) of a world box.
+  void LocalBox(const double box[6], Interval local[3]) const;
+  /// The enclosure of Natural (which must be set) over a local box, scaled and widened
+  /// by the rounding of our evaluations where terms of magnitude up to `magnitude` cancel.
+  Interval NaturalInterval(const Interval local[3], double magnitude) const;
   /// Coefficients of t -> f(o + t·d).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
   /// The same into out[0..degree] without allocating.

@@ -631,12 +631,60 @@ void ProductKernel::EvaluateLine(
 
 int SignOfProductMinus(const std::vector<Interval>& enclosures, double r)
 {
+  return SignOfProductMinus(enclosures.data(), enclosures.size(), r);
+}
+
+int SignOfProductMinus(const Interval* enclosures, size_t count, double r)
+{
+  if (count <= 16)
+  {
+    // Plain doubles when no end can leave the normal range: |ends| in [2^-60, 2^60] or
+    // 0, at most 16 factors, so every partial product is within 2^±960.
+    constexpr double Top = 1152921504606846976.0; // 2^60
+    constexpr double Bottom = 1.0 / Top;
+    bool plain = true;
+    for (size_t i = 0; i < count && plain; ++i)
+    {
+      for (const double x : { enclosures[i].Lo, enclosures[i].Hi })
+      {
+        const double a = std::fabs(x);
+        plain = plain && (a == 0.0 || (a >= Bottom && a <= Top));
+      }
+      plain = plain && enclosures[i].Lo <= enclosures[i].Hi;
+    }
+    if (plain)
+    {
+      double lo = 1.0, hi = 1.0;
+      for (size_t i = 0; i < count; ++i)
+      {
+        const Interval& v = enclosures[i];
+        const double c[4] = { lo * v.Lo, lo * v.Hi, hi * v.Lo, hi * v.Hi };
+        lo = std::min({ c[0], c[1], c[2], c[3] });
+        hi = std::max({ c[0], c[1], c[2], c[3] });
+      }
+      // Each product rounds by at most half an ulp of a normal number: widen by
+      // count ulps (relative), then compare with r exactly.
+      const double widen = 2.0 * static_cast<double>(count + 1) * DBL_EPSILON;
+      lo -= std::fabs(lo) * widen;
+      hi += std::fabs(hi) * widen;
+      if (lo > r)
+      {
+        return 1;
+      }
+      if (hi < r)
+      {
+        return -1;
+      }
+      return 0;
+    }
+  }
   // |P| ∈ [exp(logMin), exp(logMax)]; sign fixed unless a factor spans zero.
   double logMin = 0.0, logMax = 0.0;
   int sign = 1;
   bool spansZero = false;
-  for (const Interval& v : enclosures)
+  for (size_t i = 0; i < count; ++i)
   {
+    const Interval& v = enclosures[i];
     if (!(v.Lo <= v.Hi)) // NaN
     {
       return 0;
@@ -689,9 +737,68 @@ int ProductKernel::ClassifyBox(const double box[6]) const
   enclosures.resize(this->Factors.size());
   for (size_t i = 0; i < this->Factors.size(); ++i)
   {
-    enclosures[i] = this->Factors[i].Polynomial.EvaluateInterval(box);
+    const PolynomialFactor& f = this->Factors[i].Polynomial;
+    if (!f.EvaluateTaylor(box, enclosures[i], nullptr))
+    {
+      enclosures[i] = f.EvaluateInterval(box);
+    }
   }
-  return SignOfProductMinus(enclosures, this->Blending);
+  return SignOfProductMinus(enclosures.data(), enclosures.size(), this->Blending);
+}
+
+int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) const
+{
+  if (!this->AllPolynomial)
+  {
+    return 0;
+  }
+  const size_t n = this->Factors.size();
+  thread_local std::vector<Interval> whole, parts;
+  thread_local std::vector<char> expanded;
+  whole.resize(n);
+  parts.resize(8 * n);
+  expanded.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const PolynomialFactor& f = this->Factors[i].Polynomial;
+    Interval octant[8];
+    expanded[i] = f.EvaluateTaylor(box, whole[i], octant);
+    if (expanded[i])
+    {
+      for (int o = 0; o < 8; ++o)
+      {
+        parts[o * n + i] = octant[o];
+      }
+    }
+    else
+    {
+      whole[i] = f.EvaluateInterval(box);
+    }
+  }
+  const int sign = SignOfProductMinus(whole.data(), n, this->Blending);
+  if (sign != 0)
+  {
+    return sign;
+  }
+  for (int o = 0; o < 8; ++o)
+  {
+    double sub[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
+      sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
+      sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
+    }
+    for (size_t i = 0; i < n; ++i)
+    {
+      if (!expanded[i])
+      {
+        parts[o * n + i] = this->Factors[i].Polynomial.EvaluateInterval(sub);
+      }
+    }
+    octants[o] = SignOfProductMinus(parts.data() + o * n, n, this->Blending);
+  }
+  return 0;
 }
 
 int ProductKernel::NearestFactor(const double p[3]) const

@@ -55,6 +55,9 @@ struct Factor
 /// +1 if Π f_i − r > 0 for every choice of f_i in enclosures[i], −1 if < 0 for every
 /// choice, 0 otherwise. Magnitudes are combined as logarithms: never overflows.
 int SignOfProductMinus(const std::vector<Interval>& enclosures, double r);
+/// The same for n enclosures at e; where every end is 0 or within 2^±60 (and n <= 16)
+/// the product is formed in doubles, widened by its rounding, without logarithms.
+int SignOfProductMinus(const Interval* e, size_t n, double r);
 
 class ProductKernel
 {
@@ -109,6 +112,12 @@ public:
   /// interval enclosures of the factors, combined in sign and log-magnitude, so it
   /// never overflows. Cost: O(Σ terms).
   int ClassifyBox(const double box[6]) const;
+  /// ClassifyBox and, when that gives 0, the same for the box's eight octants (octant o
+  /// takes the upper half on axis a when bit a of o is set; halves split at
+  /// (lo + hi)/2), from one Taylor expansion of each factor about the box's centre
+  /// (PolynomialFactor::EvaluateTaylor; factors without one use EvaluateInterval on
+  /// each octant). Returns the box's sign; `octants` is written only when it is 0.
+  int ClassifyBoxAndOctants(const double box[6], int octants[8]) const;
 
   /// Row restriction in two steps, for callers that evaluate the same line many times:
   /// RestrictLine fills GetLineCoefficientCount() coefficients (every polynomial
