@@ -27,6 +27,7 @@ public:
   }
   bool Empty() const { return this->Size == 0; }
   std::size_t GetSize() const { return this->Size; }
+  T* GetPointer() { return this->Data.get(); }
   T& operator[](std::size_t k) { return this->Data[k]; }
   const T& operator[](std::size_t k) const { return this->Data[k]; }
 

@@ -92,7 +92,6 @@ std::vector<double> FactorKey(const pisurf::PolynomialFactor& f)
 struct vtkPiFlyingEdges::vtkInternals
 {
   std::vector<double> Values;
-  std::vector<signed char> State;
   std::shared_ptr<const pisurf::Field> Field;
   std::vector<double> CacheGrid; // the grid the factor caches belong to
   std::vector<FactorCache> Factors;
@@ -584,42 +583,41 @@ struct RestrictCachedRows
 };
 
 // The outer envelope: which points are connected to the boundary of the grid through
-// points of the outside sign. Skipped blocks are handled whole; every other point has
-// a state byte: ±2 its sign, set to ±3 once reached.
+// points of the outside sign ("free" points). Skipped blocks are handled whole; in an
+// active block each point row along x is a bit mask (bit i: point i), the block's free
+// points and the reached ones, so a block floods in a few sweeps of bit operations.
+// Blocks share their face points: a block that reaches points on a face hands them to
+// the neighbour across it, and the flood goes block by block until nothing changes.
 class Envelope
 {
 public:
-  // `buffer` holds the per-point states; it is kept between executions (no clearing
-  // needed: every entry is written here).
+  static constexpr int Rows = BlockPoints * BlockPoints; // row (j, k) at k·9 + j
+
   // `field` (may be null) marks points of bounded positive components, which the flood
   // fill does not pass (see pisurf::Field::OffOuterSide).
-  Envelope(const Grid& g, int outside, std::vector<signed char>& buffer,
-    const pisurf::Field* field = nullptr)
+  Envelope(const Grid& g, int outside, const pisurf::Field* field = nullptr)
     : G(g)
     , Outside(outside)
-    , BlockReached(g.Sign.size(), 0)
+    , BlockState(g.Sign.size(), 0)
   {
-    buffer.resize(size_t(g.Dims[0]) * g.Dims[1] * g.Dims[2]);
-    this->State = buffer.data();
-    // PASS 4a: the state of every point: ±1 in a skipped block, else ±2 from its value.
-    // Blocks fill their own points; shared points get the same value from every block
-    // (skipped signs agree with the exact values, and values are deterministic), and
-    // skipped blocks are written after active ones so that their marks win.
-    signed char* state = this->State;
+    const size_t active = g.Active.size();
+    this->Free.Allocate(active * Rows);
+    this->Reached.Allocate(active * Rows);
+    // PASS 4a. Skipped blocks of the outside sign are free as a whole, except, for a
+    // field, those in a bounded component (F keeps its sign over the block, so the whole
+    // block is in the component of its centre): those count as the other sign.
+    char* blockState = this->BlockState.data();
     const Grid* grid = &this->G;
-    // Skipped blocks of the outside sign in a bounded component: F keeps its sign over
-    // the block, so the whole block is in the component of its centre. Flagged 2 in
-    // BlockReached (never queued) and their points written as the other sign.
-    char* blockFlag = this->BlockReached.data();
-    if (field && outside > 0)
-    {
-      vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
-        for (vtkIdType b = begin; b < end; ++b)
+    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType b = begin; b < end; ++b)
+      {
+        if (grid->Sign[b] != outside)
         {
-          if (grid->Sign[b] != 1)
-          {
-            continue;
-          }
+          continue;
+        }
+        bool free = true;
+        if (field && outside > 0)
+        {
           int c[3];
           grid->BlockCoordinates(b, c);
           double centre[3];
@@ -628,274 +626,396 @@ public:
             centre[a] = grid->Origin[a] +
               0.5 * (grid->First(c, a) + grid->Last(c, a)) * grid->Spacing[a];
           }
-          if (field->OffOuterSide(centre))
-          {
-            blockFlag[b] = 2;
-          }
+          free = !field->OffOuterSide(centre);
         }
-      });
-    }
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
-        for (vtkIdType b = begin; b < end; ++b)
-        {
-          const bool skipped = grid->Sign[b] != 0;
-          if (skipped != (pass == 1))
-          {
-            continue;
-          }
-          int c[3];
-          grid->BlockCoordinates(b, c);
-          const double* v = skipped ? nullptr
-                                    : grid->Values +
-              size_t(grid->Slot[b]) * BlockPoints * BlockPoints * BlockPoints;
-          // The field's OffOuterSide for the whole block at once, where it can.
-          unsigned char off[BlockPoints * BlockPoints * BlockPoints];
-          bool boxed = false;
-          if (!skipped && field && outside > 0)
-          {
-            int first[3], last[3];
-            grid->Range(c, first, last);
-            boxed = field->OffOuterSideBox(grid->Origin, grid->Spacing, first, last,
-              BlockPoints, BlockPoints * BlockPoints, off);
-          }
-          for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
-            for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
-            {
-              signed char* row = state + grid->PointId(0, j, k);
-              if (skipped)
-              {
-                std::memset(row + grid->First(c, 0),
-                  grid->Sign[b] > 0 && blockFlag[b] != 2 ? 1 : -1,
-                  grid->Last(c, 0) - grid->First(c, 0) + 1);
-                continue;
-              }
-              const double* vr = v +
-                size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints -
-                c[0] * BlockCells;
-              for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
-              {
-                row[i] = vr[i] >= 0 ? 2 : -2;
-              }
-              if (boxed)
-              {
-                const unsigned char* o = off +
-                  size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints -
-                  c[0] * BlockCells;
-                for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
-                {
-                  if (row[i] == 2 && o[i])
-                  {
-                    row[i] = -2; // positive, but never on the outer side
-                  }
-                }
-              }
-              else if (field && outside > 0)
-              {
-                for (int i = grid->First(c, 0); i <= grid->Last(c, 0); ++i)
-                {
-                  const double p[3] = { grid->Origin[0] + i * grid->Spacing[0],
-                    grid->Origin[1] + j * grid->Spacing[1], grid->Origin[2] + k * grid->Spacing[2] };
-                  if (row[i] == 2 && field->OffOuterSide(p))
-                  {
-                    row[i] = -2; // positive, but never on the outer side
-                  }
-                }
-              }
-            }
-        }
-      });
-    }
-  }
-
-  void Flood()
-  {
-    const int* d = this->G.Dims;
-    for (int a = 0; a < 3; ++a)
-    {
-      const int u = (a + 1) % 3, w = (a + 2) % 3;
-      for (int side = 0; side < 2; ++side)
-        for (int p = 0; p < d[u]; ++p)
-          for (int q = 0; q < d[w]; ++q)
-          {
-            int idx[3];
-            idx[a] = side ? d[a] - 1 : 0;
-            idx[u] = p;
-            idx[w] = q;
-            this->Visit(idx[0], idx[1], idx[2]);
-          }
-    }
-    const vtkIdType sx = 1, sy = d[0], sz = vtkIdType(d[0]) * d[1];
-    signed char* state = this->State;
-    const signed char free = static_cast<signed char>(2 * this->Outside);
-    while (!this->BlockQueue.empty() || !this->PointQueue.empty())
-    {
-      while (!this->PointQueue.empty())
-      {
-        const vtkIdType p = this->PointQueue.back();
-        this->PointQueue.pop_back();
-        const int i = static_cast<int>(p % d[0]);
-        const int j = static_cast<int>((p / d[0]) % d[1]);
-        const int k = static_cast<int>(p / sz);
-        // Free neighbours of the outside sign: the common case, handled inline.
-        const vtkIdType n[6] = { i > 0 ? p - sx : -1, i < d[0] - 1 ? p + sx : -1,
-          j > 0 ? p - sy : -1, j < d[1] - 1 ? p + sy : -1, k > 0 ? p - sz : -1,
-          k < d[2] - 1 ? p + sz : -1 };
-        for (int m = 0; m < 6; ++m)
-        {
-          if (n[m] < 0)
-          {
-            continue;
-          }
-          const signed char s = state[n[m]];
-          if (s == free)
-          {
-            state[n[m]] = static_cast<signed char>(3 * this->Outside);
-            this->PointQueue.push_back(n[m]);
-          }
-          else if (s == this->Outside)
-          {
-            const int o[3] = { static_cast<int>(n[m] % d[0]), static_cast<int>((n[m] / d[0]) % d[1]),
-              static_cast<int>(n[m] / sz) };
-            this->Visit(o[0], o[1], o[2]);
-          }
-        }
+        blockState[b] = free ? FreeBlock : 0;
       }
-      if (!this->BlockQueue.empty())
+    });
+    // The free points of the active blocks: the outside sign (and, for a field, not off
+    // the outer side); points shared with a skipped block take that block's verdict.
+    std::uint16_t* freeRows = this->Free.GetPointer();
+    std::uint16_t* reachedRows = this->Reached.GetPointer();
+    vtkSMPTools::For(0, static_cast<vtkIdType>(active), [=](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType s = begin; s < end; ++s)
       {
-        const vtkIdType b = this->BlockQueue.back();
-        this->BlockQueue.pop_back();
-        this->ExpandBlock(b);
-      }
-    }
-    // Mark the points of reached skipped blocks reached too, so that Sign() is one
-    // lookup. (A point shared with an unreached skipped block of the outside sign
-    // cannot exist: such neighbours are reached together.)
-    const Grid* grid = &this->G;
-    const char* blockReached = this->BlockReached.data();
-    const signed char mark = static_cast<signed char>(3 * this->Outside);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(grid->Sign.size()), [=](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType b = begin; b < end; ++b)
-      {
-        if (blockReached[b] != 1)
-        {
-          continue;
-        }
         int c[3];
-        grid->BlockCoordinates(b, c);
-        for (int k = grid->First(c, 2); k <= grid->Last(c, 2); ++k)
-          for (int j = grid->First(c, 1); j <= grid->Last(c, 1); ++j)
+        grid->BlockCoordinates(grid->Active[s], c);
+        int first[3], last[3];
+        grid->Range(c, first, last);
+        const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+        const double* v = grid->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
+        unsigned char off[BlockPoints * BlockPoints * BlockPoints];
+        const bool checkField = field && outside > 0;
+        const bool boxed = checkField &&
+          field->OffOuterSideBox(grid->Origin, grid->Spacing, first, last, BlockPoints,
+            BlockPoints * BlockPoints, off);
+        std::uint16_t* fr = freeRows + size_t(s) * Rows;
+        std::fill(reachedRows + size_t(s) * Rows, reachedRows + size_t(s + 1) * Rows, 0);
+        for (int lk = 0; lk <= n[2]; ++lk)
+          for (int lj = 0; lj <= n[1]; ++lj)
           {
-            std::memset(state + grid->PointId(grid->First(c, 0), j, k), mark,
-              grid->Last(c, 0) - grid->First(c, 0) + 1);
+            const int q = (lk * BlockPoints + lj) * BlockPoints;
+            unsigned bits = 0;
+            for (int li = 0; li <= n[0]; ++li)
+            {
+              bool free = (v[q + li] >= 0) == (outside > 0);
+              if (free && checkField)
+              {
+                if (boxed)
+                {
+                  free = !off[q + li];
+                }
+                else
+                {
+                  const double p[3] = { grid->Origin[0] + (first[0] + li) * grid->Spacing[0],
+                    grid->Origin[1] + (first[1] + lj) * grid->Spacing[1],
+                    grid->Origin[2] + (first[2] + lk) * grid->Spacing[2] };
+                  free = !field->OffOuterSide(p);
+                }
+              }
+              bits |= unsigned(free) << li;
+            }
+            fr[lk * BlockPoints + lj] = static_cast<std::uint16_t>(bits);
           }
+        // Skipped neighbours (all 26) decide their shared points: free where they are
+        // free blocks, not free otherwise (clearing wins).
+        for (int pass = 0; pass < 2; ++pass)
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx)
+              {
+                const int m[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
+                if ((dx == 0 && dy == 0 && dz == 0) || m[0] < 0 || m[1] < 0 || m[2] < 0 ||
+                  m[0] >= grid->Count[0] || m[1] >= grid->Count[1] || m[2] >= grid->Count[2])
+                {
+                  continue;
+                }
+                const vtkIdType nb = grid->BlockId(m[0], m[1], m[2]);
+                if (grid->Sign[nb] == 0 || (blockState[nb] == FreeBlock) != (pass == 0))
+                {
+                  continue;
+                }
+                int lo[3], hi[3];
+                const int d[3] = { dx, dy, dz };
+                for (int a = 0; a < 3; ++a)
+                {
+                  lo[a] = d[a] < 0 ? 0 : d[a] > 0 ? n[a] : 0;
+                  hi[a] = d[a] < 0 ? 0 : n[a];
+                }
+                const unsigned xs = ((1u << (hi[0] + 1)) - 1u) & ~((1u << lo[0]) - 1u);
+                for (int lk = lo[2]; lk <= hi[2]; ++lk)
+                  for (int lj = lo[1]; lj <= hi[1]; ++lj)
+                  {
+                    std::uint16_t& row = fr[lk * BlockPoints + lj];
+                    row = static_cast<std::uint16_t>(pass == 0 ? row | xs : row & ~xs);
+                  }
+              }
       }
     });
   }
 
-  int GetOutside() const { return this->Outside; }
-
-  /// The sign the contouring sees: the outside sign where connected to the boundary,
-  /// the other sign everywhere else.
-  int Sign(int i, int j, int k) const
+  void Flood()
   {
-    return this->State[this->G.PointId(i, j, k)] == 3 * this->Outside ? this->Outside
-                                                                      : -this->Outside;
-  }
-
-private:
-  void Visit(int i, int j, int k)
-  {
-    const int* d = this->G.Dims;
-    if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2])
+    const int* count = this->G.Count;
+    std::vector<char> queued(this->G.Sign.size(), 0);
+    auto push = [&](vtkIdType b) {
+      if (!queued[b])
+      {
+        queued[b] = 1;
+        this->Queue.push_back(b);
+      }
+    };
+    // Seeds: every free point on the boundary of the grid.
+    for (vtkIdType b = 0; b < static_cast<vtkIdType>(this->G.Sign.size()); ++b)
     {
-      return;
-    }
-    signed char& s = this->State[this->G.PointId(i, j, k)];
-    if (s == 2 * this->Outside)
-    {
-      s = static_cast<signed char>(3 * this->Outside);
-      this->PointQueue.push_back(this->G.PointId(i, j, k));
-      return;
-    }
-    if (s != this->Outside)
-    {
-      return; // the other sign, or already reached
-    }
-    // In skipped blocks of the outside sign: reach all of them that contain it.
-    int xs[2], ys[2], zs[2];
-    const int nx = this->G.Containing(i, 0, xs), ny = this->G.Containing(j, 1, ys),
-              nz = this->G.Containing(k, 2, zs);
-    for (int a = 0; a < nx; ++a)
-      for (int b = 0; b < ny; ++b)
-        for (int c = 0; c < nz; ++c)
+      int c[3];
+      this->G.BlockCoordinates(b, c);
+      const bool boundary = c[0] == 0 || c[1] == 0 || c[2] == 0 || c[0] == count[0] - 1 ||
+        c[1] == count[1] - 1 || c[2] == count[2] - 1;
+      if (!boundary)
+      {
+        continue;
+      }
+      if (this->G.Sign[b] != 0)
+      {
+        if (this->BlockState[b] == FreeBlock)
         {
-          const vtkIdType id = this->G.BlockId(xs[a], ys[b], zs[c]);
-          if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
-          {
-            this->BlockReached[id] = 1;
-            this->BlockQueue.push_back(id);
-          }
+          this->BlockState[b] = ReachedBlock;
+          push(b);
         }
-  }
-
-  // A reached skipped block: its neighbours that share points with it (26) are reached
-  // if skipped with the same sign; into active neighbours, step one point off each face.
-  void ExpandBlock(vtkIdType b)
-  {
-    int c[3];
-    this->G.BlockCoordinates(b, c);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
+        continue;
+      }
+      int first[3], last[3];
+      this->G.Range(c, first, last);
+      const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+      bool any = false;
+      for (int a = 0; a < 3; ++a)
+      {
+        for (int side = 0; side < 2; ++side)
         {
-          const int n[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
-          if ((dx == 0 && dy == 0 && dz == 0) || n[0] < 0 || n[1] < 0 || n[2] < 0 ||
-            n[0] >= this->G.Count[0] || n[1] >= this->G.Count[1] || n[2] >= this->G.Count[2])
+          if (c[a] != (side ? count[a] - 1 : 0))
           {
             continue;
           }
-          const vtkIdType id = this->G.BlockId(n[0], n[1], n[2]);
-          if (this->G.Sign[id] == this->Outside && !this->BlockReached[id])
+          int lo[3] = { 0, 0, 0 }, hi[3] = { n[0], n[1], n[2] };
+          lo[a] = hi[a] = side ? n[a] : 0;
+          any = this->Seed(this->G.Slot[b], lo, hi) || any;
+        }
+      }
+      if (any)
+      {
+        push(b);
+      }
+    }
+    while (!this->Queue.empty())
+    {
+      const vtkIdType b = this->Queue.back();
+      this->Queue.pop_back();
+      queued[b] = 0;
+      int c[3];
+      this->G.BlockCoordinates(b, c);
+      if (this->G.Sign[b] != 0)
+      {
+        // A reached skipped block: every neighbour sharing points with it.
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+            {
+              const int m[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
+              if ((dx == 0 && dy == 0 && dz == 0) || m[0] < 0 || m[1] < 0 || m[2] < 0 ||
+                m[0] >= count[0] || m[1] >= count[1] || m[2] >= count[2])
+              {
+                continue;
+              }
+              const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
+              if (this->G.Sign[nb] != 0)
+              {
+                if (this->BlockState[nb] == FreeBlock)
+                {
+                  this->BlockState[nb] = ReachedBlock;
+                  push(nb);
+                }
+                continue;
+              }
+              int first[3], last[3];
+              this->G.Range(m, first, last);
+              const int d[3] = { dx, dy, dz };
+              int lo[3], hi[3];
+              for (int a = 0; a < 3; ++a)
+              {
+                // The neighbour's points shared with this block.
+                const int na = last[a] - first[a];
+                lo[a] = d[a] > 0 ? 0 : d[a] < 0 ? na : 0;
+                hi[a] = d[a] > 0 ? 0 : na;
+              }
+              if (this->Seed(this->G.Slot[nb], lo, hi))
+              {
+                push(nb);
+              }
+            }
+        continue;
+      }
+      // An active block: flood it, then hand its reached face points to the neighbours.
+      const int slot = this->G.Slot[b];
+      this->FloodBlock(slot);
+      int first[3], last[3];
+      this->G.Range(c, first, last);
+      const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+      const std::uint16_t* reached = this->Reached.GetPointer() + size_t(slot) * Rows;
+      for (int a = 0; a < 3; ++a)
+      {
+        for (int side = 0; side < 2; ++side)
+        {
+          int m[3] = { c[0], c[1], c[2] };
+          m[a] += side ? 1 : -1;
+          if (m[a] < 0 || m[a] >= count[a])
           {
-            this->BlockReached[id] = 1;
-            this->BlockQueue.push_back(id);
+            continue;
+          }
+          const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
+          const int plane = side ? n[a] : 0;
+          if (this->G.Sign[nb] != 0)
+          {
+            if (this->BlockState[nb] == FreeBlock && this->FaceReached(reached, a, plane, n))
+            {
+              this->BlockState[nb] = ReachedBlock;
+              push(nb);
+            }
+            continue;
+          }
+          int nfirst[3], nlast[3];
+          this->G.Range(m, nfirst, nlast);
+          const int nn[3] = { nlast[0] - nfirst[0], nlast[1] - nfirst[1], nlast[2] - nfirst[2] };
+          if (this->PassFace(reached, a, plane, n, this->G.Slot[nb], side ? 0 : nn[a]))
+          {
+            push(nb);
           }
         }
-    // Faces towards active blocks: the points just outside this block.
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int side = 0; side < 2; ++side)
+      }
+    }
+  }
+
+  int GetOutside() const { return this->Outside; }
+
+  /// The row masks the contouring sees in active block `slot`: bit i set where the sign
+  /// is positive (the outside sign where connected to the boundary, the other sign
+  /// everywhere else).
+  unsigned PositiveRow(int slot, int row) const
+  {
+    const unsigned reached = this->Reached[size_t(slot) * Rows + row];
+    return this->Outside > 0 ? reached : ~reached & 0x1ffu;
+  }
+
+private:
+  static constexpr char FreeBlock = 1;
+  static constexpr char ReachedBlock = 2;
+
+  // Marks the free points of rows [lo, hi] of block `slot` reached; true if any is new.
+  bool Seed(int slot, const int lo[3], const int hi[3])
+  {
+    const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
+    std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
+    const unsigned xs = ((1u << (hi[0] + 1)) - 1u) & ~((1u << lo[0]) - 1u);
+    bool added = false;
+    for (int lk = lo[2]; lk <= hi[2]; ++lk)
+      for (int lj = lo[1]; lj <= hi[1]; ++lj)
       {
-        int n[3] = { c[0], c[1], c[2] };
-        n[a] += side ? 1 : -1;
-        if (n[a] < 0 || n[a] >= this->G.Count[a] ||
-          this->G.Sign[this->G.BlockId(n[0], n[1], n[2])] != 0)
+        const int r = lk * BlockPoints + lj;
+        const unsigned add = fr[r] & xs & ~unsigned(rr[r]);
+        if (add)
+        {
+          rr[r] = static_cast<std::uint16_t>(rr[r] | add);
+          added = true;
+        }
+      }
+    return added;
+  }
+
+  // Any reached point on the plane `plane` of axis a?
+  static bool FaceReached(const std::uint16_t* reached, int a, int plane, const int n[3])
+  {
+    for (int lk = 0; lk <= n[2]; ++lk)
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        if ((a == 1 && lj != plane) || (a == 2 && lk != plane))
         {
           continue;
         }
-        const int u = (a + 1) % 3, w = (a + 2) % 3;
-        const int plane = side ? this->G.Last(c, a) + 1 : this->G.First(c, a) - 1;
-        for (int p = this->G.First(c, u); p <= this->G.Last(c, u); ++p)
-          for (int q = this->G.First(c, w); q <= this->G.Last(c, w); ++q)
-          {
-            int idx[3];
-            idx[a] = plane;
-            idx[u] = p;
-            idx[w] = q;
-            this->Visit(idx[0], idx[1], idx[2]);
-          }
+        const unsigned r = reached[lk * BlockPoints + lj];
+        if (a == 0 ? (r >> plane) & 1u : r != 0)
+        {
+          return true;
+        }
       }
+    return false;
+  }
+
+  // Copies the reached points of plane `plane` (axis a) into plane `target` of the
+  // active block `slot` (the same points); true if any is new there.
+  bool PassFace(const std::uint16_t* reached, int a, int plane, const int n[3], int slot, int target)
+  {
+    const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
+    std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
+    bool added = false;
+    for (int lk = 0; lk <= n[2]; ++lk)
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        unsigned in;
+        int to;
+        if (a == 0)
+        {
+          in = ((reached[lk * BlockPoints + lj] >> plane) & 1u) << target;
+          to = lk * BlockPoints + lj;
+        }
+        else if (a == 1)
+        {
+          if (lj != plane)
+          {
+            continue;
+          }
+          in = reached[lk * BlockPoints + lj];
+          to = lk * BlockPoints + target;
+        }
+        else
+        {
+          if (lk != plane)
+          {
+            continue;
+          }
+          in = reached[lk * BlockPoints + lj];
+          to = target * BlockPoints + lj;
+        }
+        const unsigned add = in & fr[to] & ~unsigned(rr[to]);
+        if (add)
+        {
+          rr[to] = static_cast<std::uint16_t>(rr[to] | add);
+          added = true;
+        }
+      }
+    return added;
+  }
+
+  // The reached points of an active block grown through its free points to a fixed
+  // point: along x by shifts within a row, along y and z from the neighbouring rows, in
+  // sweeps up and down until a pair of sweeps changes nothing.
+  void FloodBlock(int slot)
+  {
+    int c[3];
+    this->G.BlockCoordinates(this->G.Active[slot], c);
+    int first[3], last[3];
+    this->G.Range(c, first, last);
+    const int ny = last[1] - first[1], nz = last[2] - first[2];
+    const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
+    std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
+    auto spread = [](unsigned r, unsigned f) {
+      for (;;)
+      {
+        const unsigned next = (r | (r << 1) | (r >> 1)) & f;
+        if (next == r)
+        {
+          return r;
+        }
+        r = next;
+      }
+    };
+    for (bool changed = true; changed;)
+    {
+      changed = false;
+      for (int lk = 0; lk <= nz; ++lk)
+        for (int lj = 0; lj <= ny; ++lj)
+        {
+          const int r = lk * BlockPoints + lj;
+          unsigned x = rr[r];
+          unsigned from = (lj > 0 ? rr[r - 1] : 0u) | (lk > 0 ? rr[r - BlockPoints] : 0u);
+          x = spread(x | (from & fr[r]), fr[r]);
+          if (x != rr[r])
+          {
+            rr[r] = static_cast<std::uint16_t>(x);
+            changed = true;
+          }
+        }
+      for (int lk = nz; lk >= 0; --lk)
+        for (int lj = ny; lj >= 0; --lj)
+        {
+          const int r = lk * BlockPoints + lj;
+          unsigned x = rr[r];
+          unsigned from =
+            (lj < ny ? rr[r + 1] : 0u) | (lk < nz ? rr[r + BlockPoints] : 0u);
+          x = spread(x | (from & fr[r]), fr[r]);
+          if (x != rr[r])
+          {
+            rr[r] = static_cast<std::uint16_t>(x);
+            changed = true;
+          }
+        }
     }
   }
 
   const Grid& G;
   int Outside;
-  std::vector<char> BlockReached;
-  signed char* State; // one per grid point (not owned)
-  std::vector<vtkIdType> BlockQueue;
-  std::vector<vtkIdType> PointQueue;
+  std::vector<char> BlockState; // skipped blocks: FreeBlock, ReachedBlock or 0
+  pisurf::Buffer<std::uint16_t> Free, Reached; // per active block: Rows masks each
+  std::vector<vtkIdType> Queue;
 };
 
 // PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge
@@ -914,9 +1034,6 @@ struct Contour
   const Grid* G;
   const Envelope* Outer; // null: plain signs
   vtkMarchingCubesTriangleCases* Cases;
-  // Per vertex, ordered by block and then by this key: axis·BlockCells³ + the local index
-  // of the edge's lower end point. A block's vertices are [VertexCount[s], [s + 1]).
-  unsigned short* EdgeKey;
   std::vector<vtkIdType>* VertexCount;   // per active block: count, then first id
   std::vector<vtkIdType>* TriangleCount; // per active block: count, then first index
   pisurf::Buffer<vtkIdType>* VertexEdge; // per vertex: point id · 3 + axis
@@ -925,162 +1042,190 @@ struct Contour
   vtkIdType* TriangleIds;
   Mode Pass = Count;
   int SlabBegin = 0, SlabEnd = 1 << 30; // this piece's block layers along z
-  signed char* Signs; // per active block: the signs the contouring sees (Count fills them)
-  // Per active block, per cell: its marching-cubes case (Count fills them, Triangles
-  // reads them and skips the cells without triangles).
-  unsigned char* CellCases;
 
-  static constexpr int Points = BlockPoints * BlockPoints * BlockPoints;
+  // Per active block, filled by Count: the signs the contouring sees as bit masks, one
+  // per point row along x (bit i: point i of row (j, k) is positive), and, per axis and
+  // row (k, j) of the edges the block owns (lower end at local 0..7 on every axis), the
+  // crossing edges as a bit mask and the number of the block's vertices before that
+  // row. A block's vertices are numbered by axis, then k, j, i: any edge's vertex id is
+  // its owner's first id + the row's offset + the crossings before it in the row.
+  std::uint16_t* RowSigns;
+  std::uint8_t* EdgeMasks;
+  std::uint16_t* EdgeOffsets;
+  const std::uint8_t* TrianglesOfCase; // per marching-cubes case: its triangle count
 
-  static constexpr int Cells = BlockCells * BlockCells * BlockCells;
+  static constexpr int Rows = BlockPoints * BlockPoints;
+  static constexpr int EdgeRows = 3 * BlockCells * BlockCells;
 
   static int Local(int li, int lj, int lk) { return (lk * BlockPoints + lj) * BlockPoints + li; }
-  static int CellIndex(int li, int lj, int lk) { return (lk * BlockCells + lj) * BlockCells + li; }
-  static unsigned short Key(int axis, int li, int lj, int lk)
-  {
-    return static_cast<unsigned short>(
-      ((axis * BlockCells + lk) * BlockCells + lj) * BlockCells + li);
-  }
+  static int EdgeRow(int axis, int lk, int lj) { return (axis * BlockCells + lk) * BlockCells + lj; }
 
-  // The vertex id of edge (i, j, k, axis): a binary search among its owner's vertices.
-  // `own`: the current block's slot and its dense key -> vertex table (edges it owns
-  // are looked up directly; a neighbour's by binary search).
-  vtkIdType VertexOf(int i, int j, int k, int axis, int own, const vtkIdType* table) const
+  // The vertex id of the crossing edge (i, j, k, axis) (grid indices of its lower end).
+  vtkIdType VertexOf(int i, int j, int k, int axis) const
   {
     const int c[3] = { i / BlockCells, j / BlockCells, k / BlockCells };
     const int slot = this->G->Slot[this->G->BlockId(c[0], c[1], c[2])];
-    const unsigned short key =
-      Key(axis, i - c[0] * BlockCells, j - c[1] * BlockCells, k - c[2] * BlockCells);
-    if (slot == own)
-    {
-      return table[key];
-    }
-    const unsigned short* first = this->EdgeKey + (*this->VertexCount)[slot];
-    const unsigned short* last = this->EdgeKey + (*this->VertexCount)[slot + 1];
-    return std::lower_bound(first, last, key) - this->EdgeKey;
+    const int row = EdgeRow(axis, k - c[2] * BlockCells, j - c[1] * BlockCells);
+    const unsigned before =
+      this->EdgeMasks[size_t(slot) * EdgeRows + row] & ((1u << (i - c[0] * BlockCells)) - 1u);
+    return (*this->VertexCount)[slot] + this->EdgeOffsets[size_t(slot) * EdgeRows + row] +
+      __builtin_popcount(before);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const int* d = this->G->Dims;
     for (vtkIdType s = begin; s < end; ++s)
     {
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
-      const double* v = this->G->Values + size_t(s) * Points;
+      const double* v = this->G->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
       int f[3], l[3];
       this->G->Range(c, f, l);
-      signed char* sign = this->Signs + size_t(s) * Points;
+      // Cells along each axis in this block (8, fewer in the last block), and the last
+      // owned lower end.
+      const int n[3] = { l[0] - f[0], l[1] - f[1], l[2] - f[2] };
+      const int h[3] = { std::min(n[0], BlockCells - 1), std::min(n[1], BlockCells - 1),
+        std::min(n[2], BlockCells - 1) };
+      std::uint16_t* rows = this->RowSigns + size_t(s) * Rows;
+      std::uint8_t* masks = this->EdgeMasks + size_t(s) * EdgeRows;
+      std::uint16_t* offsets = this->EdgeOffsets + size_t(s) * EdgeRows;
       if (this->Pass == Count)
       {
         // The signs the contouring sees, once per point of the block.
-        for (int k = f[2]; k <= l[2]; ++k)
-          for (int j = f[1]; j <= l[1]; ++j)
-            for (int i = f[0]; i <= l[0]; ++i)
+        for (int lk = 0; lk <= n[2]; ++lk)
+          for (int lj = 0; lj <= n[1]; ++lj)
+          {
+            const double* row = v + Local(0, lj, lk);
+            unsigned bits = 0;
+            if (this->Outer)
             {
-              const int q = Local(i - f[0], j - f[1], k - f[2]);
-              sign[q] = static_cast<signed char>(
-                this->Outer ? this->Outer->Sign(i, j, k) : (v[q] >= 0 ? 1 : -1));
+              bits = this->Outer->PositiveRow(static_cast<int>(s), lk * BlockPoints + lj) &
+                ((2u << n[0]) - 1u);
             }
-      }
-      vtkIdType vertex = this->Pass == Count ? 0 : (*this->VertexCount)[s];
-      vtkIdType triangle = this->Pass == Count ? 0 : (*this->TriangleCount)[s];
-      if (this->Pass != Triangles)
-      {
-        // Owned lower end points: local indices 0..BlockCells−1 (the blocks are laid out
-        // so that the grid's last point plane falls inside the last block).
-        int hi[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          hi[a] = std::min(l[a], f[a] + BlockCells - 1);
-        }
-        // Axis outermost, so that the keys come out sorted (VertexOf searches them).
-        for (int axis = 0; axis < 3; ++axis)
-          for (int k = f[2]; k <= hi[2]; ++k)
-            for (int j = f[1]; j <= hi[1]; ++j)
-              for (int i = f[0]; i <= hi[0]; ++i)
+            else
+            {
+              for (int li = 0; li <= n[0]; ++li)
               {
-                const int q0 = Local(i - f[0], j - f[1], k - f[2]);
-                int n[3] = { i - f[0], j - f[1], k - f[2] };
-                if (++n[axis] + f[axis] > l[axis])
+                bits |= unsigned(row[li] >= 0) << li;
+              }
+            }
+            rows[lk * BlockPoints + lj] = static_cast<std::uint16_t>(bits);
+          }
+        // The owned crossing edges, row by row, numbered in key order.
+        const unsigned owned = (1u << (h[0] + 1)) - 1u;
+        const unsigned xEdges = (1u << std::min(n[0], BlockCells)) - 1u;
+        unsigned vertex = 0;
+        for (int axis = 0; axis < 3; ++axis)
+          for (int lk = 0; lk < BlockCells; ++lk)
+            for (int lj = 0; lj < BlockCells; ++lj)
+            {
+              const int row = EdgeRow(axis, lk, lj);
+              unsigned mask = 0;
+              if (lk <= h[2] && lj <= h[1])
+              {
+                const unsigned r = rows[lk * BlockPoints + lj];
+                if (axis == 0)
                 {
-                  continue; // beyond the grid
+                  mask = (r ^ (r >> 1)) & xEdges;
                 }
-                const int q1 = Local(n[0], n[1], n[2]);
-                if (sign[q0] == sign[q1])
+                else if (axis == 1 && lj + 1 <= n[1])
                 {
-                  continue;
+                  mask = (r ^ rows[lk * BlockPoints + lj + 1]) & owned;
                 }
-                if (this->Pass == Edges)
+                else if (axis == 2 && lk + 1 <= n[2])
                 {
-                  this->EdgeKey[vertex] = Key(axis, i - f[0], j - f[1], k - f[2]);
-                  (*this->VertexEdge)[vertex] = this->G->PointId(i, j, k) * 3 + axis;
-                  const double v0 = v[q0], v1 = v[q1];
-                  const bool own0 = (v0 >= 0) == (sign[q0] > 0);
-                  const bool own1 = (v1 >= 0) == (sign[q1] > 0);
-                  // Both ends of one sign (the envelope gave one the other sign): start
-                  // at the end whose sign is its own; Refine looks for the surface
-                  // nearest to it along the edge.
-                  const double t = !(own0 && own1) ? (own0 ? 0.0 : 1.0)
-                                                  : (v0 == v1 ? 0.5 : v0 / (v0 - v1));
-                  (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
-                  (*this->VertexEnds)[2 * vertex] = v0;
-                  (*this->VertexEnds)[2 * vertex + 1] = v1;
+                  mask = (r ^ rows[(lk + 1) * BlockPoints + lj]) & owned;
                 }
+              }
+              masks[row] = static_cast<std::uint8_t>(mask);
+              offsets[row] = static_cast<std::uint16_t>(vertex);
+              vertex += __builtin_popcount(mask);
+            }
+        (*this->VertexCount)[s] = vertex;
+      }
+      if (this->Pass == Edges)
+      {
+        vtkIdType vertex = (*this->VertexCount)[s];
+        for (int axis = 0; axis < 3; ++axis)
+          for (int lk = 0; lk < BlockCells; ++lk)
+            for (int lj = 0; lj < BlockCells; ++lj)
+            {
+              unsigned mask = masks[EdgeRow(axis, lk, lj)];
+              while (mask)
+              {
+                const int li = __builtin_ctz(mask);
+                mask &= mask - 1;
+                int m[3] = { li, lj, lk };
+                const int q0 = Local(li, lj, lk);
+                ++m[axis];
+                const int q1 = Local(m[0], m[1], m[2]);
+                const bool positive0 = (rows[lk * BlockPoints + lj] >> li) & 1;
+                const bool positive1 = (rows[m[2] * BlockPoints + m[1]] >> m[0]) & 1;
+                (*this->VertexEdge)[vertex] =
+                  this->G->PointId(f[0] + li, f[1] + lj, f[2] + lk) * 3 + axis;
+                const double v0 = v[q0], v1 = v[q1];
+                const bool own0 = (v0 >= 0) == positive0;
+                const bool own1 = (v1 >= 0) == positive1;
+                // Both ends of one sign (the envelope gave one the other sign): start at
+                // the end whose sign is its own; Refine looks for the surface nearest to
+                // it along the edge.
+                const double t = !(own0 && own1) ? (own0 ? 0.0 : 1.0)
+                                                : (v0 == v1 ? 0.5 : v0 / (v0 - v1));
+                (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
+                (*this->VertexEnds)[2 * vertex] = v0;
+                (*this->VertexEnds)[2 * vertex + 1] = v1;
                 ++vertex;
               }
+            }
+        continue;
       }
-      if (this->Pass != Edges && c[2] >= this->SlabBegin && c[2] < this->SlabEnd)
+      if (c[2] < this->SlabBegin || c[2] >= this->SlabEnd)
       {
-        thread_local std::vector<vtkIdType> table(3 * BlockCells * BlockCells * BlockCells);
-        if (this->Pass == Triangles)
+        if (this->Pass == Count)
         {
-          for (vtkIdType id = (*this->VertexCount)[s]; id < (*this->VertexCount)[s + 1]; ++id)
-          {
-            table[this->EdgeKey[id]] = id;
-          }
+          (*this->TriangleCount)[s] = 0;
         }
-        unsigned char* cases = this->CellCases + size_t(s) * Cells;
-        for (int k = f[2]; k < l[2]; ++k)
-          for (int j = f[1]; j < l[1]; ++j)
-            for (int i = f[0]; i < l[0]; ++i)
+        continue;
+      }
+      // The cells with both signs among their corners, row by row (i ascending).
+      vtkIdType triangle = this->Pass == Count ? 0 : (*this->TriangleCount)[s];
+      const unsigned cells = (1u << n[0]) - 1u;
+      for (int lk = 0; lk < n[2]; ++lk)
+        for (int lj = 0; lj < n[1]; ++lj)
+        {
+          const unsigned a = rows[lk * BlockPoints + lj], b = rows[lk * BlockPoints + lj + 1],
+                         cc = rows[(lk + 1) * BlockPoints + lj],
+                         d = rows[(lk + 1) * BlockPoints + lj + 1];
+          const unsigned all = a & b & cc & d, any = a | b | cc | d;
+          unsigned mixed = ((any | (any >> 1)) & ~(all & (all >> 1))) & cells;
+          while (mixed)
+          {
+            const int li = __builtin_ctz(mixed);
+            mixed &= mixed - 1;
+            // Corners in VTK's hexahedron order (pisurf::mc::Corner).
+            const unsigned index = ((a >> li) & 1) | ((a >> li) & 2) | (((b >> li) & 2) << 1) |
+              (((b >> li) & 1) << 3) | (((cc >> li) & 1) << 4) | (((cc >> li) & 2) << 4) |
+              (((d >> li) & 2) << 5) | (((d >> li) & 1) << 7);
+            if (this->Pass == Count)
             {
-              unsigned char& index = cases[CellIndex(i - f[0], j - f[1], k - f[2])];
-              if (this->Pass == Count)
+              triangle += this->TrianglesOfCase[index];
+              continue;
+            }
+            const int* list = this->Cases[index].edges;
+            const int i = f[0] + li, j = f[1] + lj, k = f[2] + lk;
+            for (int e = 0; list[e] >= 0; e += 3, ++triangle)
+            {
+              for (int q = 0; q < 3; ++q)
               {
-                index = 0;
-                for (int q = 0; q < 8; ++q)
-                {
-                  if (sign[Local(i - f[0] + Corner[q][0], j - f[1] + Corner[q][1],
-                        k - f[2] + Corner[q][2])] > 0)
-                  {
-                    index |= 1 << q;
-                  }
-                }
-              }
-              const int* list = this->Cases[index].edges;
-              if (this->Pass == Count)
-              {
-                for (int e = 0; list[e] >= 0; e += 3)
-                {
-                  ++triangle;
-                }
-                continue;
-              }
-              for (int e = 0; list[e] >= 0; e += 3, ++triangle)
-              {
-                for (int m = 0; m < 3; ++m)
-                {
-                  const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + m]];
-                  this->TriangleIds[3 * triangle + m] = this->VertexOf(i + edge.Lo[0],
-                    j + edge.Lo[1], k + edge.Lo[2], edge.Axis, static_cast<int>(s), table.data());
-                }
+                const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + q]];
+                this->TriangleIds[3 * triangle + q] =
+                  this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
               }
             }
-      }
+          }
+        }
       if (this->Pass == Count)
       {
-        (*this->VertexCount)[s] = vertex;
         (*this->TriangleCount)[s] = triangle;
       }
     }
@@ -1713,7 +1858,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           }
     }
     envelope.reset(
-      new Envelope(g, 2 * positive >= total ? 1 : -1, this->Internals->State, field.get()));
+      new Envelope(g, 2 * positive >= total ? 1 : -1, field.get()));
     lap("envelope states");
     envelope->Flood();
   }
@@ -1734,15 +1879,28 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // This piece's slab of block layers along z (all of them for one piece).
   const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
   const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
-  Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), nullptr,
-    &vertexCount, &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count,
-    0, 1 << 30, nullptr, nullptr };
-  std::unique_ptr<signed char[]> signs(new signed char[size_t(activeCount) * Contour::Points]);
-  contour.Signs = signs.get();
-  std::unique_ptr<unsigned char[]> cellCases(new unsigned char[size_t(activeCount) * Contour::Cells]);
-  contour.CellCases = cellCases.get();
-  contour.SlabBegin = slabBegin;
-  contour.SlabEnd = slabEnd;
+  // Triangles per marching-cubes case.
+  std::uint8_t trianglesOfCase[256];
+  for (int index = 0; index < 256; ++index)
+  {
+    int count = 0;
+    for (const int* e = vtkMarchingCubesTriangleCases::GetCases()[index].edges; *e >= 0; e += 3)
+    {
+      ++count;
+    }
+    trianglesOfCase[index] = static_cast<std::uint8_t>(count);
+  }
+  Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), &vertexCount,
+    &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count, slabBegin,
+    slabEnd, nullptr, nullptr, nullptr, trianglesOfCase };
+  pisurf::Buffer<std::uint16_t> rowSigns, edgeOffsets;
+  pisurf::Buffer<std::uint8_t> edgeMasks;
+  rowSigns.Allocate(size_t(activeCount) * Contour::Rows);
+  edgeMasks.Allocate(size_t(activeCount) * Contour::EdgeRows);
+  edgeOffsets.Allocate(size_t(activeCount) * Contour::EdgeRows);
+  contour.RowSigns = rowSigns.GetPointer();
+  contour.EdgeMasks = edgeMasks.GetPointer();
+  contour.EdgeOffsets = edgeOffsets.GetPointer();
   vtkSMPTools::For(0, activeCount, contour);
   vtkIdType vertices = 0, triangles = 0;
   if (lap.IsEnabled())
@@ -1768,8 +1926,6 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   vertexCount[activeCount] = vertices;
   triangleCount[activeCount] = triangles;
-  std::unique_ptr<unsigned short[]> edgeKeys(new unsigned short[std::max<vtkIdType>(vertices, 1)]);
-  contour.EdgeKey = edgeKeys.get();
   vertexEdge.Allocate(vertices);
   vertexT.Allocate(vertices);
   vertexEnds.Allocate(2 * vertices);

@@ -6,24 +6,35 @@
  * vtkPiFlyingEdges meshes the zero set of a vtkPiSurface over a regular grid spanning
  * the model bounds, in passes threaded with vtkSMPTools:
  *
- * 1. The grid is cut into blocks of 8³ cells. Each block gets an interval enclosure of
- *    every factor (the intersection of term-wise interval arithmetic, the mean-value
- *    form f(c) + Σ ∂f(box)·[−h, h], and the expression as written, so (8z+5)^6 is
- *    bounded tightly), combined in sign and log-magnitude so it never overflows. A
- *    block whose enclosure of F = Π f_i − r excludes 0 is skipped: its sign is known and
- *    nothing in it is evaluated or contoured. Groups of 4³ blocks are classified first;
- *    a block is kept only if one of its octants may hold the surface.
+ * 1. The grid is cut into blocks of 8³ cells. Each block gets an enclosure of every
+ *    factor from its Taylor expansion about the block's centre (f(c + h∘u) = Σ b_α u^α,
+ *    each term over u ∈ [−1, 1]³, one-axis quadratic parts exactly; width about
+ *    |∇f|·h, without the cancellation of the monomial form), intersected above degree
+ *    2 with the expression as written (so (8z+5)^6 is bounded tightly); factors above
+ *    degree 8 use term-wise interval arithmetic, the mean-value form and the
+ *    expression. The factors' enclosures are multiplied in doubles where nothing can
+ *    overflow, else combined in sign and log-magnitude. A block whose enclosure of
+ *    F = Π f_i − r excludes 0 is skipped: its sign is known and nothing in it is
+ *    evaluated or contoured. Groups of 4³ blocks are classified first, then the 2³
+ *    quarters of undecided groups; a block is kept only if one of its octants (bounded
+ *    from the block's own expansion) may hold the surface.
  * 2. Every polynomial factor is restricted once to each grid row that crosses an
  *    active block (an exact univariate polynomial about the row's middle), so no
  *    virtual call is paid per point per factor, and every grid point evaluates
  *    identically whichever block asks (no cracks between blocks).
  * 3. The points of the active blocks are evaluated by Horner's rule, with the product
  *    accumulated overflow-safely (see vtkPiSurface).
- * 4. With OuterEnvelope, a flood fill from the boundary of the grid (skipped blocks
- *    as single nodes) finds the outside region; see SetOuterEnvelope.
+ * 4. With OuterEnvelope, a flood fill from the boundary of the grid finds the outside
+ *    region (see SetOuterEnvelope): skipped blocks are single nodes; an active block
+ *    floods its points as bit masks (one per row of 9 points: free and reached) and
+ *    hands the points it reaches on a face to the neighbour across it.
  * 5. Marching cubes, with VTK's case table (vtkMarchingCubesTriangleCases, the one
  *    vtkFlyingEdges3D also uses, so the same triangles), over the cells of the active
- *    blocks only; each crossing edge gets exactly one vertex (shared between blocks).
+ *    blocks only, from the same row bit masks of the signs: the crossing edges of a row
+ *    are its mask XOR its neighbour's, the cells with both signs a few AND/OR of four
+ *    rows. Each crossing edge gets exactly one vertex, numbered by the block that owns
+ *    its lower end; a triangle finds a neighbour's vertex by counting the crossings
+ *    before its edge in the owner's row (no search).
  * 6. Vertices: with ProjectVertices (default on) each moves to the exact root of F on
  *    its grid edge. The edge's end values have opposite signs (the sign of F is exact),
  *    so the root is bracketed; regula falsi (Illinois) on F, or on the overflow-free
@@ -53,8 +64,7 @@
  * but contours, projects and attributes only its own slab; the union of the pieces is
  * the serial mesh, with the seam vertices present in both neighbours.
  *
- * The largest work buffers (the active blocks' values, the envelope's point states)
- * are kept between executions, so re-meshing does not pay for fresh memory again;
+ * The largest work buffer (the active blocks' values) is kept between executions, so re-meshing does not pay for fresh memory again;
  * they are released with the object. So are each polynomial factor's row
  * restrictions (pass 2), keyed by the factor's terms and placement and by the grid:
  * when an edit changes one factor, only that factor is restricted again, and the mesh
