@@ -1058,6 +1058,25 @@ struct Contour
   static constexpr int EdgeRows = 3 * BlockCells * BlockCells;
 
   static int Local(int li, int lj, int lk) { return (lk * BlockPoints + lj) * BlockPoints + li; }
+  // The set bits of an 8-bit mask (a table: the baseline x86-64 has no POPCNT
+  // instruction, and __builtin_popcount then calls a library routine).
+  static int BitCount(unsigned mask)
+  {
+    static constexpr struct Table
+    {
+      unsigned char Of[256];
+      constexpr Table()
+        : Of()
+      {
+        for (int m = 0; m < 256; ++m)
+        {
+          this->Of[m] = static_cast<unsigned char>((m & 1) + (m >> 1 & 1) + (m >> 2 & 1) +
+            (m >> 3 & 1) + (m >> 4 & 1) + (m >> 5 & 1) + (m >> 6 & 1) + (m >> 7 & 1));
+        }
+      }
+    } table{};
+    return table.Of[mask & 0xffu];
+  }
   static int EdgeRow(int axis, int lk, int lj) { return (axis * BlockCells + lk) * BlockCells + lj; }
 
   // The vertex id of the crossing edge (i, j, k, axis) (grid indices of its lower end).
@@ -1069,7 +1088,7 @@ struct Contour
     const unsigned before =
       this->EdgeMasks[size_t(slot) * EdgeRows + row] & ((1u << (i - c[0] * BlockCells)) - 1u);
     return (*this->VertexCount)[slot] + this->EdgeOffsets[size_t(slot) * EdgeRows + row] +
-      __builtin_popcount(before);
+      BitCount(before);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
@@ -1139,7 +1158,7 @@ struct Contour
               }
               masks[row] = static_cast<std::uint8_t>(mask);
               offsets[row] = static_cast<std::uint16_t>(vertex);
-              vertex += __builtin_popcount(mask);
+              vertex += BitCount(mask);
             }
         (*this->VertexCount)[s] = vertex;
       }
@@ -1261,6 +1280,46 @@ struct VertexAttributes
   std::atomic<vtkIdType>* Done;
   vtkIdType Total;
 
+  // Newton's method on F along the edge x = x0 + s·dx, s ∈ [0, 1], from s = t, kept in
+  // the bracket the signs give (bisection when a step leaves it), on the factors'
+  // restrictions to the edge's line: stops when |F| <= small or a step is shorter than
+  // `width` (Newton's error is then about the square of that step). −1 where the plain
+  // product cannot be used (then the caller's regula falsi decides).
+  static double Newton(const pisurf::ProductKernel* kernel, const double* line, int axis,
+    double x0, double dx, double t, double va, double small, double width)
+  {
+    double lo = 0.0, hi = 1.0, s = std::max(0.0, std::min(1.0, t));
+    for (int it = 0; it < 60; ++it)
+    {
+      double v, slope;
+      if (!kernel->EvaluateOnAxisWithSlope(line, axis, x0 + s * dx, v, slope))
+      {
+        return -1.0;
+      }
+      if (std::fabs(v) <= small)
+      {
+        return s;
+      }
+      ((v < 0) == (va < 0) ? lo : hi) = s;
+      if (hi - lo <= width)
+      {
+        return 0.5 * (lo + hi);
+      }
+      double next = s - v / (slope * dx);
+      if (!(next > lo && next < hi))
+      {
+        next = 0.5 * (lo + hi);
+      }
+      const double step = std::fabs(next - s);
+      s = next;
+      if (step <= width)
+      {
+        return s;
+      }
+    }
+    return s;
+  }
+
   double Refine(const double a[3], const double b[3], double t, double va, double vb) const
   {
     // A field that can certify the first root from the positive end in one pass (see
@@ -1299,7 +1358,26 @@ struct VertexAttributes
         x[k] = a[k] + s * (b[k] - a[k]);
       }
     };
+    // A product of axis-aligned polynomial factors restricted to the edge's line once
+    // (one pass over each factor's terms); each step is then Horner's rule on the
+    // univariate polynomials instead of a trivariate evaluation.
+    int axis = 0;
+    while (axis < 2 && a[axis] == b[axis])
+    {
+      ++axis;
+    }
+    const pisurf::ProductKernel* kernel = this->Kernel->Field ? nullptr : this->Kernel->Kernel;
+    thread_local std::vector<double> line;
+    if (kernel)
+    {
+      line.resize(kernel->GetLineCoefficientCount());
+    }
+    const bool onAxis = kernel && !compressed && kernel->RestrictToAxis(a, axis, line.data());
     auto along = [&](double s) {
+      if (onAxis)
+      {
+        return kernel->EvaluateOnAxis(line.data(), axis, a[axis] + s * (b[axis] - a[axis]));
+      }
       double x[3];
       pointAt(s, x);
       return phi(x);
@@ -1386,8 +1464,16 @@ struct VertexAttributes
     }
     // |F| below 1e-12 of its values at the ends: the root is within ~1e-12 of an edge.
     const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
-    const double root =
-      pisurf::BracketedRoot(along, 0.0, 1.0, va, vb, this->Tolerance / length, small);
+    double root = -1.0;
+    if (onAxis)
+    {
+      root = this->Newton(kernel, line.data(), axis, a[axis], b[axis] - a[axis], t, va, small,
+        this->Tolerance / length);
+    }
+    if (root < 0.0)
+    {
+      root = pisurf::BracketedRoot(along, 0.0, 1.0, va, vb, this->Tolerance / length, small);
+    }
     if (this->PositiveEnvelope && offOuterSide(root))
     {
       // A root of a bounded component's sheet (the edge runs outside, wall, lens, wall):

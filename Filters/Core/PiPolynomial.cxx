@@ -75,9 +75,13 @@ void Polynomial3::AddTerm(double c, int i, int j, int k)
 void Polynomial3::Summarize()
 {
   this->Degree = -1;
+  std::fill(this->AxisDegree, this->AxisDegree + 3, 0);
   for (const auto& t : this->Terms)
   {
     this->Degree = std::max(this->Degree, t.I + t.J + t.K);
+    this->AxisDegree[0] = std::max(this->AxisDegree[0], t.I);
+    this->AxisDegree[1] = std::max(this->AxisDegree[1], t.J);
+    this->AxisDegree[2] = std::max(this->AxisDegree[2], t.K);
   }
   this->Quadric = this->Degree <= 2;
   std::fill(this->Q, this->Q + 10, 0.0);
@@ -146,12 +150,7 @@ double Polynomial3::GetCoefficient(int i, int j, int k) const
 
 int Polynomial3::GetAxisDegree(int axis) const
 {
-  int d = 0;
-  for (const auto& t : this->Terms)
-  {
-    d = std::max(d, axis == 0 ? t.I : (axis == 1 ? t.J : t.K));
-  }
-  return d;
+  return this->AxisDegree[axis];
 }
 
 bool Polynomial3::IsFinite() const
@@ -585,6 +584,48 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
         out[m + k] += cm * pw(2, t.K, k);
       }
     }
+  }
+}
+
+void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
+{
+  const int n = this->AxisDegree[axis];
+  if (this->Quadric && !this->Terms.empty())
+  {
+    // Q: 1, x, y, z, x², y², z², xy, xz, yz. With u, w the fixed variables of this axis:
+    // c0 + c1·s + c2·s².
+    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
+    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+    const double* Q = this->Q;
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const double qu = q[u], qw = q[w];
+    const double all[3] = { Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw +
+        Q[Square[u]] * qu * qu + Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw,
+      Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw, Q[Square[axis]] };
+    std::copy(all, all + n + 1, out);
+    return;
+  }
+  std::fill(out, out + n + 1, 0.0);
+  if (this->Terms.empty())
+  {
+    return;
+  }
+  // Powers of the two fixed variables only.
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  double pu[MaxDegree + 1], pw[MaxDegree + 1];
+  pu[0] = pw[0] = 1.0;
+  for (int k = 1; k <= this->AxisDegree[u]; ++k)
+  {
+    pu[k] = pu[k - 1] * q[u];
+  }
+  for (int k = 1; k <= this->AxisDegree[w]; ++k)
+  {
+    pw[k] = pw[k - 1] * q[w];
+  }
+  for (const auto& t : this->Terms)
+  {
+    const int e[3] = { t.I, t.J, t.K };
+    out[e[axis]] += t.Coefficient * (pu[e[u]] * pw[e[w]]);
   }
 }
 

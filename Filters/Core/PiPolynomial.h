@@ -101,6 +101,9 @@ public:
   int ExpandAbout(const double c[3], const double h[3], double* b) const;
   /// The polynomial of the coefficients' absolute values (magnitude bounds).
   Polynomial3 Absolute() const;
+  /// Coefficients out[0..GetAxisDegree(axis)] of u -> P(q with q[axis] = u): the terms
+  /// summed by their power of that variable, the others fixed at q. Cost: O(terms).
+  void RestrictToAxis(const double q[3], int axis, double* out) const;
   /// Substitutes the affine map q = A·p + b (q is this polynomial's variable).
   Polynomial3 Compose(const double A[3][3], const double b[3]) const;
 
@@ -114,6 +117,7 @@ private:
   void PowerTables(const double p[3], double* px, double* py, double* pz) const;
   std::vector<Monomial> Terms;
   int Degree = -1; // -1 for the zero polynomial
+  int AxisDegree[3] = { 0, 0, 0 }; // largest power of each variable (Summarize)
   // Degree <= 2 (spheres, cylinders, quadrics: most factors) is evaluated from dense
   // coefficients: 1, x, y, z, x², y², z², xy, xz, yz.
   bool Quadric = true;

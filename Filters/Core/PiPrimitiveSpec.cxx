@@ -257,6 +257,8 @@ void PolynomialFactor::PrepareIntervals()
     this->Gradient[i] = this->Poly.Derivative(i);
   }
   this->HasGradient = true;
+  this->Diagonal = this->A[0][1] == 0 && this->A[0][2] == 0 && this->A[1][0] == 0 &&
+    this->A[1][2] == 0 && this->A[2][0] == 0 && this->A[2][1] == 0;
   this->HasWorld = false;
   if (this->Poly.GetDegree() >= 0 && this->Poly.GetDegree() <= TaylorMaxDegree)
   {

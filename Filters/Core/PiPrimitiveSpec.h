@@ -104,6 +104,9 @@ struct PolynomialFactor
   /// PrepareIntervals() when the degree is at most TaylorMaxDegree, for EvaluateTaylor.
   Polynomial3 World, WorldMagnitude;
   bool HasWorld = false;
+  /// A is diagonal (translated and scaled primitives, expressions): a world axis is a
+  /// local axis. Set by PrepareIntervals().
+  bool Diagonal = false;
 
   /// Precomputes what EvaluateInterval needs for its tighter (mean-value) enclosure.
   void PrepareIntervals();

@@ -103,6 +103,8 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
   : Factors(std::move(factors))
   , Blending(blending)
 {
+  this->PlainBound = pisurf::Ldexp(
+    1.0, std::min(256, 1000 / std::max<int>(1, static_cast<int>(this->Factors.size()))));
   this->AllPolynomial = std::all_of(
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
   for (Factor& f : this->Factors)
@@ -145,6 +147,95 @@ double ProductKernel::EvaluateRestricted(const double* coefficients, double t, c
     }
   }
   return this->Finish(m, e);
+}
+
+bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coefficients) const
+{
+  if (!this->AllPolynomial)
+  {
+    return false;
+  }
+  for (const Factor& f : this->Factors)
+  {
+    const PolynomialFactor& pf = f.Polynomial;
+    if (!pf.Diagonal)
+    {
+      return false;
+    }
+    const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
+    double q[3];
+    pf.ToLocal(p, q);
+    std::fill(coefficients, coefficients + n, 0.0);
+    pf.Poly.RestrictToAxis(q, axis, coefficients);
+    coefficients += n;
+  }
+  return true;
+}
+
+double ProductKernel::EvaluateOnAxis(const double* coefficients, int axis, double x) const
+{
+  // Plain doubles while every factor is 0 or within 2^±B, B = min(256, 1000 / factors)
+  // (no partial product leaves the normal range, so the same bits as the scaled product
+  // below, as in EvaluateRestrictedRow).
+  const double bound = this->PlainBound, inverse = 1.0 / bound;
+  double product = 1.0, hi = 0.0, lo = bound;
+  const double* c = coefficients;
+  for (const Factor& f : this->Factors)
+  {
+    const PolynomialFactor& pf = f.Polynomial;
+    const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
+    const double v = EvaluateUnivariate(c, n, pf.A[axis][axis] * x + pf.B[axis]);
+    product *= v;
+    const double a = std::fabs(v);
+    hi = std::max(hi, a);
+    lo = std::min(lo, a == 0.0 ? bound : a);
+    c += n;
+  }
+  if (hi <= bound && lo >= inverse && std::isfinite(product))
+  {
+    return Clamp(product - this->Blending);
+  }
+  double m = 1.0;
+  long e = 0;
+  for (const Factor& f : this->Factors)
+  {
+    const PolynomialFactor& pf = f.Polynomial;
+    const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
+    const double u = pf.A[axis][axis] * x + pf.B[axis];
+    Accumulate(m, e, EvaluateUnivariate(coefficients, n, u));
+    coefficients += n;
+  }
+  return this->Finish(m, e);
+}
+
+bool ProductKernel::EvaluateOnAxisWithSlope(
+  const double* coefficients, int axis, double x, double& value, double& slope) const
+{
+  const double bound = this->PlainBound, inverse = 1.0 / bound;
+  double product = 1.0, derivative = 0.0;
+  for (const Factor& f : this->Factors)
+  {
+    const PolynomialFactor& pf = f.Polynomial;
+    const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
+    const double u = pf.A[axis][axis] * x + pf.B[axis];
+    double v = 0.0, d = 0.0;
+    for (int m = n - 1; m >= 0; --m)
+    {
+      d = d * u + v;
+      v = v * u + coefficients[m];
+    }
+    const double a = std::fabs(v);
+    if (a > bound || (a != 0.0 && a < inverse))
+    {
+      return false;
+    }
+    derivative = derivative * v + product * d * pf.A[axis][axis];
+    product *= v;
+    coefficients += n;
+  }
+  value = product - this->Blending;
+  slope = derivative;
+  return std::isfinite(value) && std::isfinite(slope);
 }
 
 // Cloned for AVX2 where the CPU has it (4 points per instruction instead of 2; no FMA,

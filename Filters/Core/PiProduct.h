@@ -137,6 +137,21 @@ public:
   void EvaluateRestrictedRow(const double* coefficients, double t0, int n,
     const double origin[3], const double step[3], double* values) const;
 
+  /// Along the line through p parallel to world axis `axis`: each factor as a
+  /// univariate polynomial in its local coordinate along that axis
+  /// (GetLineCoefficientCount() doubles, each factor's degree + 1), for EvaluateOnAxis:
+  /// one pass over the terms, then a few operations per evaluation. False (nothing
+  /// usable written) if a factor is not a polynomial or has a rotated frame.
+  bool RestrictToAxis(const double p[3], int axis, double* coefficients) const;
+  /// F at the point of that line whose coordinate `axis` is x, overflow-safe and clamped
+  /// as Evaluate (it may differ from Evaluate in the last bits).
+  double EvaluateOnAxis(const double* coefficients, int axis, double x) const;
+  /// F and dF/dx there in plain doubles (the product rule over the factors), for Newton
+  /// steps; false where a factor leaves 2^±min(256, 1000 / factors) or a result is not
+  /// finite (then use EvaluateOnAxis).
+  bool EvaluateOnAxisWithSlope(
+    const double* coefficients, int axis, double x, double& value, double& slope) const;
+
   /// The factor with the smallest first-order distance |f_i|/|∇f_i| to its own zero set
   /// at p (the primitive whose patch p lies on); −1 without factors.
   int NearestFactor(const double p[3]) const;
@@ -147,6 +162,9 @@ private:
   double Finish(double m, long e) const;
 
   std::vector<Factor> Factors;
+  // 2^min(256, 1000 / factors): factor values within 2^± this multiply in plain doubles
+  // with the scaled product's bits.
+  double PlainBound = 1.0;
   double Blending;
   bool AllPolynomial;
   size_t LineCoefficients = 0;

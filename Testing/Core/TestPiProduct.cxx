@@ -1466,3 +1466,68 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
   ASSERT_TRUE(f.Polynomial.EvaluateTaylor(box, whole, nullptr));
   EXPECT_GT(whole.Lo, 0.3);
 }
+
+// Along a world axis, the factors' univariate restrictions (RestrictToAxis) give F as
+// the trivariate evaluation does, and the slope of EvaluateOnAxisWithSlope is ∂F/∂axis;
+// a rotated factor refuses (its local axes are not world axes).
+TEST(ProductKernel, AxisRestrictionMatchesEvaluation)
+{
+  std::vector<Factor> fs;
+  const double c0[3] = { 0.3, -0.2, 0.1 }, c1[3] = { -0.4, 0.5, 0.2 };
+  fs.push_back(Sphere(c0, 0.8));
+  fs.push_back(Sphere(c1, 0.6));
+  for (const char* e : { "((z+1)^2+10*x^2+10*y^2+19)^2-800*(x^2+y^2)",
+         "0.1*x^6+0.1*y^6+(8*z+5)^6-1", "x*y*z+x^2*z-3*y+0.5" })
+  {
+    PrimitiveSpec s;
+    s.Type = PrimitiveType::Polynomial;
+    s.Expression = e;
+    s.Center[0] = 0.25;
+    s.Scale = 0.01;
+    fs.push_back(FromSpec(s));
+  }
+  PrimitiveSpec flipped; // axis −z: a diagonal frame with negative entries
+  flipped.Type = PrimitiveType::Torus;
+  flipped.MajorRadius = 0.9;
+  flipped.MinorRadius = 0.3;
+  flipped.Center[2] = 0.4;
+  flipped.Orient = Orientation::Axis;
+  flipped.Axis[0] = 0;
+  flipped.Axis[1] = 0;
+  flipped.Axis[2] = -1;
+  fs.push_back(FromSpec(flipped));
+  const ProductKernel kernel(fs, 0.3);
+  ASSERT_TRUE(kernel.GetFactor(fs.size() - 1).Polynomial.Diagonal);
+  std::vector<double> line(kernel.GetLineCoefficientCount());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  for (int n = 0; n < 300; ++n)
+  {
+    double p[3] = { u(rng), u(rng), u(rng) };
+    const int axis = n % 3;
+    ASSERT_TRUE(kernel.RestrictToAxis(p, axis, line.data()));
+    for (const double dx : { 0.0, 0.013, -0.21 })
+    {
+      double q[3] = { p[0], p[1], p[2] };
+      q[axis] += dx;
+      double g[3];
+      const double F = kernel.EvaluateWithGradient(q, g);
+      const double scale = 1e-11 * (1.0 + std::fabs(F));
+      EXPECT_NEAR(kernel.EvaluateOnAxis(line.data(), axis, q[axis]), F, scale);
+      double value, slope;
+      ASSERT_TRUE(kernel.EvaluateOnAxisWithSlope(line.data(), axis, q[axis], value, slope));
+      EXPECT_NEAR(value, F, scale);
+      EXPECT_NEAR(slope, g[axis], 1e-10 * (1.0 + std::fabs(g[axis])));
+    }
+  }
+  PrimitiveSpec cone;
+  cone.Type = PrimitiveType::Cone;
+  cone.Orient = Orientation::Rotation;
+  cone.RotationAxis[0] = 1;
+  cone.RotationAngle = 30.0;
+  fs.push_back(FromSpec(cone));
+  const ProductKernel rotated(fs, 0.3);
+  std::vector<double> line2(rotated.GetLineCoefficientCount());
+  const double p[3] = { 0.1, 0.2, 0.3 };
+  EXPECT_FALSE(rotated.RestrictToAxis(p, 0, line2.data()));
+}
