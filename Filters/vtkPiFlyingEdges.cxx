@@ -464,6 +464,106 @@ struct SampleBlocks
   }
 };
 
+// PASS 3 for a product of polynomials: row by row. Each grid row (j, k) that crosses an
+// active block is evaluated once over the runs of consecutive x blocks it needs (one
+// call per run, several points at a time), and its values are copied into every active
+// block that holds the row (up to four, where j or k is on a block boundary): each grid
+// point is evaluated once, not once per block sharing it. The values are those of
+// SampleBlocks (EvaluateRestrictedRow depends only on the coefficients and t).
+struct SampleRows
+{
+  const pisurf::ProductKernel* Kernel;
+  Grid* G;
+  const std::vector<vtkIdType>* Rows; // the rows (k·Dims[1] + j) in coefficient order
+  const std::vector<double>* Coefficients;
+  vtkPiFlyingEdges* Algorithm;
+  std::atomic<bool>* Abort;
+
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    const bool single = vtkSMPTools::GetSingleThread();
+    const size_t n = this->Kernel->GetLineCoefficientCount();
+    const int* d = this->G->Dims;
+    const double mid = 0.5 * (d[0] - 1);
+    const double unused[3] = { 0, 0, 0 };
+    thread_local std::vector<double> values;
+    values.resize(d[0]);
+    thread_local std::vector<char> need;
+    need.resize(this->G->Count[0]);
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      if (single && (r & 255) == 0 && this->Algorithm->CheckAbort())
+      {
+        *this->Abort = true;
+      }
+      if (*this->Abort)
+      {
+        return;
+      }
+      const vtkIdType row = (*this->Rows)[r];
+      const int j = static_cast<int>(row % d[1]), k = static_cast<int>(row / d[1]);
+      int ys[2], zs[2];
+      const int ny = this->G->Containing(j, 1, ys), nz = this->G->Containing(k, 2, zs);
+      for (int bx = 0; bx < this->G->Count[0]; ++bx)
+      {
+        char any = 0;
+        for (int a = 0; a < ny; ++a)
+          for (int b = 0; b < nz; ++b)
+          {
+            any |= this->G->Slot[this->G->BlockId(bx, ys[a], zs[b])] >= 0;
+          }
+        need[bx] = any;
+      }
+      const double* coefficients = this->Coefficients->data() + r * n;
+      for (int bx = 0; bx < this->G->Count[0];)
+      {
+        if (!need[bx])
+        {
+          ++bx;
+          continue;
+        }
+        int last = bx;
+        while (last + 1 < this->G->Count[0] && need[last + 1])
+        {
+          ++last;
+        }
+        const int first = bx * BlockCells;
+        const int stop = std::min((last + 1) * BlockCells, d[0] - 1);
+        this->Kernel->EvaluateRestrictedRow(
+          coefficients, first - mid, stop - first + 1, unused, unused, values.data() + first);
+        for (int i = first; i <= stop; ++i)
+        {
+          values[i] = std::max(-ValueLimit, std::min(ValueLimit, values[i]));
+        }
+        bx = last + 1;
+      }
+      for (int bx = 0; bx < this->G->Count[0]; ++bx)
+      {
+        if (!need[bx])
+        {
+          continue;
+        }
+        const int first = bx * BlockCells;
+        const int count = std::min(first + BlockCells, d[0] - 1) - first + 1;
+        for (int a = 0; a < ny; ++a)
+          for (int b = 0; b < nz; ++b)
+          {
+            const int slot = this->G->Slot[this->G->BlockId(bx, ys[a], zs[b])];
+            if (slot < 0)
+            {
+              continue;
+            }
+            double* out = this->G->Values +
+              size_t(slot) * BlockPoints * BlockPoints * BlockPoints +
+              size_t((k - zs[b] * BlockCells) * BlockPoints + (j - ys[a] * BlockCells)) *
+                BlockPoints;
+            std::copy(values.data() + first, values.data() + first + count, out);
+          }
+      }
+    }
+  }
+};
+
 // The factor caches of this execution: per factor of the kernel, its cache (null for a
 // factor that is not a polynomial; factors of equal content share one), or none at all
 // (empty) for a field or when the restrictions of every row would exceed 64 MiB.
@@ -1910,8 +2010,16 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   this->Internals->Values.resize(g.Active.size() * BlockPoints * BlockPoints * BlockPoints);
   g.Values = this->Internals->Values.data();
   std::atomic<bool> abort{ false };
-  SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
+  if (kernel && kernel->IsPolynomial())
+  {
+    SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), sample);
+  }
+  else
+  {
+    SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
+  }
   if (abort || this->CheckAbort())
   {
     return 1;

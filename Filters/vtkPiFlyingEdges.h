@@ -23,7 +23,9 @@
  *    virtual call is paid per point per factor, and every grid point evaluates
  *    identically whichever block asks (no cracks between blocks).
  * 3. The points of the active blocks are evaluated by Horner's rule, with the product
- *    accumulated overflow-safely (see vtkPiSurface).
+ *    accumulated overflow-safely (see vtkPiSurface): row by row, each run of
+ *    consecutive needed blocks along a row in one call, so a point shared by several
+ *    blocks is evaluated once.
  * 4. With OuterEnvelope, a flood fill from the boundary of the grid finds the outside
  *    region (see SetOuterEnvelope): skipped blocks are single nodes; an active block
  *    floods its points as bit masks (one per row of 9 points: free and reached) and
