@@ -35,6 +35,7 @@
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkTypeInt32Array.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -46,6 +47,7 @@
 #include <cmath>
 #include <deque>
 #include <memory>
+#include <type_traits>
 #include <new>
 #include <vector>
 
@@ -1139,7 +1141,10 @@ struct Contour
   pisurf::Buffer<vtkIdType>* VertexEdge; // per vertex: point id · 3 + axis
   pisurf::Buffer<double>* VertexT;       // per vertex: crossing parameter along the edge
   pisurf::Buffer<double>* VertexEnds;    // per vertex: F at the edge's two end points
+  // The triangles' point ids, in vtkCellArray's 64-bit or (when the ids fit) 32-bit
+  // storage: exactly one of the two is set. Written facing ∇F (see GenerateMesh).
   vtkIdType* TriangleIds;
+  std::int32_t* TriangleIds32;
   Mode Pass = Count;
   int SlabBegin = 0, SlabEnd = 1 << 30; // this piece's block layers along z
 
@@ -1337,8 +1342,19 @@ struct Contour
               for (int q = 0; q < 3; ++q)
               {
                 const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + q]];
-                this->TriangleIds[3 * triangle + q] =
+                const vtkIdType id =
                   this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
+                // Corners 1 and 2 swapped: the table winds triangles for "inside =
+                // positive", ours face ∇F.
+                const vtkIdType at = 3 * triangle + (q == 0 ? 0 : 3 - q);
+                if (this->TriangleIds32)
+                {
+                  this->TriangleIds32[at] = static_cast<std::int32_t>(id);
+                }
+                else
+                {
+                  this->TriangleIds[at] = id;
+                }
               }
             }
           }
@@ -2085,7 +2101,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     trianglesOfCase[index] = static_cast<std::uint8_t>(count);
   }
   Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), &vertexCount,
-    &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, Contour::Count, slabBegin,
+    &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, nullptr, Contour::Count, slabBegin,
     slabEnd, nullptr, nullptr, nullptr, trianglesOfCase };
   pisurf::Buffer<std::uint16_t> rowSigns, edgeOffsets;
   pisurf::Buffer<std::uint8_t> edgeMasks;
@@ -2123,9 +2139,20 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vertexEdge.Allocate(vertices);
   vertexT.Allocate(vertices);
   vertexEnds.Allocate(2 * vertices);
+  // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory).
+  const bool narrow = 3.0 * double(triangles) < 2147483647.0 && double(vertices) < 2147483647.0;
   vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(3 * triangles);
-  contour.TriangleIds = connectivity->GetPointer(0);
+  vtkNew<vtkTypeInt32Array> connectivity32;
+  if (narrow)
+  {
+    connectivity32->SetNumberOfValues(3 * triangles);
+    contour.TriangleIds32 = connectivity32->GetPointer(0);
+  }
+  else
+  {
+    connectivity->SetNumberOfValues(3 * triangles);
+    contour.TriangleIds = connectivity->GetPointer(0);
+  }
   // Edge tables first (triangles look up neighbours' tables), then the triangles.
   contour.Pass = Contour::Edges;
   vtkSMPTools::For(0, activeCount, contour);
@@ -2136,10 +2163,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     // Keep only the vertices this piece's triangles use (the seams' vertices are shared
     // with the neighbouring piece, at identical positions).
     std::vector<vtkIdType> renumber(vertices, -1);
-    vtkIdType* tri = connectivity->GetPointer(0);
+    auto id = [&](vtkIdType t) -> vtkIdType {
+      return narrow ? connectivity32->GetPointer(0)[t] : connectivity->GetPointer(0)[t];
+    };
     for (vtkIdType t = 0; t < 3 * triangles; ++t)
     {
-      renumber[tri[t]] = 0;
+      renumber[id(t)] = 0;
     }
     vtkIdType used = 0;
     for (vtkIdType v = 0; v < vertices; ++v)
@@ -2155,7 +2184,14 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     }
     for (vtkIdType t = 0; t < 3 * triangles; ++t)
     {
-      tri[t] = renumber[tri[t]];
+      if (narrow)
+      {
+        connectivity32->SetValue(t, static_cast<std::int32_t>(renumber[id(t)]));
+      }
+      else
+      {
+        connectivity->SetValue(t, renumber[id(t)]);
+      }
     }
     vertices = used;
   }
@@ -2199,24 +2235,34 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   lap("vertices");
 
-  // Triangles face ∇F, like the Normals, so renderers light the side they see: the
-  // marching-cubes table winds them the other way for "inside = positive". The offsets
-  // are written here too: vtkCellArray takes both arrays as they are (SetData with a
-  // cell size would copy the connectivity and fill the offsets on one thread).
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(triangles + 1);
-  vtkIdType* tri = connectivity->GetPointer(0);
-  vtkIdType* offset = offsets->GetPointer(0);
-  vtkSMPTools::For(0, triangles, [tri, offset](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType t = begin; t < end; ++t)
-    {
-      std::swap(tri[3 * t + 1], tri[3 * t + 2]);
-      offset[t] = 3 * t;
-    }
-  });
-  offset[triangles] = 3 * triangles;
+  // Triangles face ∇F, like the Normals, so renderers light the side they see (the
+  // Triangles pass wound them so). The offsets are written here: vtkCellArray takes both
+  // arrays as they are (SetData with a cell size would copy the connectivity and fill the
+  // offsets on one thread).
   vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
+  auto fillOffsets = [triangles](auto* offset) {
+    using Id = typename std::remove_pointer<decltype(offset)>::type;
+    vtkSMPTools::For(0, triangles + 1, [offset](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType t = begin; t < end; ++t)
+      {
+        offset[t] = static_cast<Id>(3 * t);
+      }
+    });
+  };
+  if (narrow)
+  {
+    vtkNew<vtkTypeInt32Array> offsets;
+    offsets->SetNumberOfValues(triangles + 1);
+    fillOffsets(offsets->GetPointer(0));
+    polys->SetData(offsets, connectivity32);
+  }
+  else
+  {
+    vtkNew<vtkIdTypeArray> offsets;
+    offsets->SetNumberOfValues(triangles + 1);
+    fillOffsets(offsets->GetPointer(0));
+    polys->SetData(offsets, connectivity);
+  }
   output->SetPoints(points);
   output->SetPolys(polys);
   output->GetPointData()->SetNormals(normals);

@@ -56,7 +56,9 @@
  * `Factor` (index of the primitive whose zero set is nearest, so each primitive's patch
  * can be coloured) and, with ComputeGradientMagnitude, `GradientMagnitude` (|∇F|).
  * Field data: `PiSurfaceModel`, the model as .pisurf JSON (with the meshed bounds when
- * the model has none), when every factor is a polynomial. Triangles face ∇F.
+ * the model has none), when every factor is a polynomial. Triangles face ∇F. The
+ * triangles are in vtkCellArray's 32-bit storage when the point ids and the
+ * connectivity's length fit 32 bits (half the memory), else in its 64-bit storage.
  *
  * Grid: `Bounds` (all zero = the model's bounds, see vtkPiSurface::GetModelBounds);
  * `Resolution` cells along the longest side (default 128), the other sides get cells

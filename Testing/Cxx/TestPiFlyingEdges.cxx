@@ -38,6 +38,8 @@ int TestPiFlyingEdges(int, char*[])
   PI_CHECK(watch.Quiet());
   vtkPolyData* mesh = mesher->GetOutput();
   PI_CHECK(mesh->GetNumberOfPolys() > 1000);
+  // Ids that fit 32 bits: vtkCellArray's 32-bit storage, as documented.
+  PI_CHECK(!mesh->GetPolys()->IsStorage64Bit());
 
   // Closed, one component.
   vtkNew<vtkFeatureEdges> edges;
