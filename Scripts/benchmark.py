@@ -12,8 +12,10 @@ side in one run (best of 3):
               row at a time: each factor restricted to each row once, then Horner's
               rule several points at a time); ComputeNormals off everywhere
   mesh        vtkSampleFunction + vtkFlyingEdges3D with its normals
-              versus vtkPiFlyingEdges (row-restricted sampling, flying edges, exact
-              normals, vertices moved onto F = 0)
+              versus vtkPiFlyingEdges at its defaults (row-restricted sampling, flying
+              edges, exact normals, vertices moved onto F = 0, outer envelope) and with
+              ProjectVertices and OuterEnvelope off (the same work as VTK's pipeline:
+              linear vertices, every sheet; the same triangles)
 """
 import os
 import sys
@@ -143,10 +145,23 @@ def run(name, surface, n):
             mesher.Update()
             return mesher.GetOutput().GetNumberOfCells()
 
+        plain = vtkPiFlyingEdges()
+        plain.SetPiSurface(surface)
+        plain.SetBounds(bounds)
+        plain.SetSampleDimensions(n, n, n)
+        plain.ProjectVerticesOff()
+        plain.OuterEnvelopeOff()
+
+        def pi_plain():
+            plain.Modified()
+            plain.Update()
+            return plain.GetOutput().GetNumberOfCells()
+
         t_vtk_mesh, cells_vtk = best_of(vtk_mesh)
         t_pi_mesh, cells_pi = best_of(pi_mesh)
+        t_pi_plain, cells_plain = best_of(pi_plain)
         rows.append((name, backend, t_sum_eval, t_vtk_eval, t_pi_eval, t_grid_eval, t_vtk_mesh,
-                     t_pi_mesh, cells_vtk, cells_pi))
+                     t_pi_mesh, cells_vtk, cells_pi, t_pi_plain, cells_plain))
     return rows
 
 
@@ -161,14 +176,15 @@ def main():
     print("grid %d^3, load average %.2f, %d cores" % (n, os.getloadavg()[0], os.cpu_count()))
     print("| model | backend | SampleFunction(ImplicitSum) | SampleFunction(PiSurface) | "
           "PiSurface batch | vtkPiSampleFunction | grid ratio to ImplicitSum / PiSurface | "
-          "SampleFunction+FlyingEdges3D | vtkPiFlyingEdges | ratio | triangles VTK / Pi |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "SampleFunction+FlyingEdges3D | vtkPiFlyingEdges | ratio | triangles VTK / Pi | "
+          "vtkPiFlyingEdges, projection and envelope off | ratio | triangles |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, surface in cases:
         for r in run(name, surface, n):
             print("| %s | %s | %.3f s | %.3f s | %.3f s | %.3f s | %.1fx / %.1fx | %.3f s | %.3f s "
-                  "| %.1fx | %d / %d |"
+                  "| %.1fx | %d / %d | %.3f s | %.1fx | %d |"
                   % (r[0], r[1], r[2], r[3], r[4], r[5], r[2] / r[5], r[3] / r[5], r[6], r[7],
-                     r[6] / r[7], r[8], r[9]))
+                     r[6] / r[7], r[8], r[9], r[10], r[6] / r[10], r[11]))
 
 
 if __name__ == "__main__":

@@ -602,7 +602,10 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
     const double all[3] = { Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw +
         Q[Square[u]] * qu * qu + Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw,
       Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw, Q[Square[axis]] };
-    std::copy(all, all + n + 1, out);
+    for (int m = 0; m <= n; ++m)
+    {
+      out[m] = all[m];
+    }
     return;
   }
   std::fill(out, out + n + 1, 0.0);

@@ -165,7 +165,11 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
     double q[3];
     pf.ToLocal(p, q);
-    std::fill(coefficients, coefficients + n, 0.0);
+    // The axis degree may be below the degree: the rest are zeros.
+    for (int m = pf.Poly.GetAxisDegree(axis) + 1; m < n; ++m)
+    {
+      coefficients[m] = 0.0;
+    }
     pf.Poly.RestrictToAxis(q, axis, coefficients);
     coefficients += n;
   }
@@ -219,10 +223,20 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
     const double u = pf.A[axis][axis] * x + pf.B[axis];
     double v = 0.0, d = 0.0;
-    for (int m = n - 1; m >= 0; --m)
+    if (n == 3)
     {
-      d = d * u + v;
-      v = v * u + coefficients[m];
+      // A quadric (most factors): the loop's operations, unrolled.
+      const double v1 = coefficients[2] * u + coefficients[1];
+      d = coefficients[2] * u + v1;
+      v = v1 * u + coefficients[0];
+    }
+    else
+    {
+      for (int m = n - 1; m >= 0; --m)
+      {
+        d = d * u + v;
+        v = v * u + coefficients[m];
+      }
     }
     const double a = std::fabs(v);
     if (a > bound || (a != 0.0 && a < inverse))
