@@ -599,12 +599,16 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
     const double* Q = this->Q;
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
     const double qu = q[u], qw = q[w];
-    const double all[3] = { Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw +
-        Q[Square[u]] * qu * qu + Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw,
-      Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw, Q[Square[axis]] };
-    for (int m = 0; m <= n; ++m)
+    // (Written one by one: a loop of n + 1 copies becomes a library memcpy call.)
+    out[0] = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
+      Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
+    if (n >= 1)
     {
-      out[m] = all[m];
+      out[1] = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
+    }
+    if (n >= 2)
+    {
+      out[2] = Q[Square[axis]];
     }
     return;
   }

@@ -531,6 +531,47 @@ static void FinishVertex(
 void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
   int& nearest, double* logGradientNorm) const
 {
+  // Up to 32 polynomial factors: all values and gradients first (independent
+  // evaluations), then the product rule in plain doubles when every factor is non-zero
+  // within 2^±(250 / factors) and every gradient component below that: no partial
+  // product or gradient then leaves [2^-256, 2^256], where ScaledProduct never rescales,
+  // so the same operations give the same bits.
+  constexpr size_t MaxPlain = 32;
+  const size_t count = this->Factors.size();
+  if (this->AllPolynomial && count > 0 && count <= MaxPlain)
+  {
+    double f[MaxPlain], g[MaxPlain][3];
+    const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
+    const double bottom = 1.0 / top;
+    bool plain = true;
+    for (size_t k = 0; k < count; ++k)
+    {
+      f[k] = this->Factors[k].Polynomial.EvaluateWithGradient(p, g[k]);
+      const double a = std::fabs(f[k]);
+      plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
+        std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+    }
+    if (plain)
+    {
+      double best = std::numeric_limits<double>::infinity();
+      nearest = -1;
+      ScaledProduct s;
+      for (size_t k = 0; k < count; ++k)
+      {
+        KeepNearest(f[k], g[k], static_cast<int>(k), nearest, best);
+      }
+      for (size_t k = 0; k < count; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          s.G[c] = s.G[c] * f[k] + s.P * g[k][c];
+        }
+        s.P *= f[k];
+      }
+      FinishVertex(s, normal, gradientNorm, logGradientNorm);
+      return;
+    }
+  }
   ScaledProduct s;
   double gi[3];
   double best = std::numeric_limits<double>::infinity();
