@@ -1483,16 +1483,22 @@ struct VertexAttributes
       ++axis;
     }
     const pisurf::ProductKernel* kernel = this->Kernel->Field ? nullptr : this->Kernel->Kernel;
-    thread_local std::vector<double> line;
-    if (kernel)
+    // On the stack for the usual few factors (a thread_local costs a TLS lookup per
+    // vertex in a shared library).
+    constexpr size_t StackCoefficients = 256;
+    double stackLine[StackCoefficients];
+    double* line = stackLine;
+    if (kernel && kernel->GetLineCoefficientCount() > StackCoefficients)
     {
-      line.resize(kernel->GetLineCoefficientCount());
+      thread_local std::vector<double> heapLine;
+      heapLine.resize(kernel->GetLineCoefficientCount());
+      line = heapLine.data();
     }
-    const bool onAxis = kernel && !compressed && kernel->RestrictToAxis(a, axis, line.data());
+    const bool onAxis = kernel && !compressed && kernel->RestrictToAxis(a, axis, line);
     auto along = [&](double s) {
       if (onAxis)
       {
-        return kernel->EvaluateOnAxis(line.data(), axis, a[axis] + s * (b[axis] - a[axis]));
+        return kernel->EvaluateOnAxis(line, axis, a[axis] + s * (b[axis] - a[axis]));
       }
       double x[3];
       pointAt(s, x);
@@ -1583,7 +1589,7 @@ struct VertexAttributes
     double root = -1.0;
     if (onAxis)
     {
-      root = this->Newton(kernel, line.data(), axis, a[axis], b[axis] - a[axis], t, va, small,
+      root = this->Newton(kernel, line, axis, a[axis], b[axis] - a[axis], t, va, small,
         this->Tolerance / length);
     }
     if (root < 0.0)

@@ -84,6 +84,14 @@ void Polynomial3::Summarize()
     this->AxisDegree[2] = std::max(this->AxisDegree[2], t.K);
   }
   this->Quadric = this->Degree <= 2;
+  this->Scaled3.resize(3 * this->Terms.size());
+  for (size_t n = 0; n < this->Terms.size(); ++n)
+  {
+    const Monomial& t = this->Terms[n];
+    this->Scaled3[3 * n] = t.Coefficient * t.I;
+    this->Scaled3[3 * n + 1] = t.Coefficient * t.J;
+    this->Scaled3[3 * n + 2] = t.Coefficient * t.K;
+  }
   std::fill(this->Q, this->Q + 10, 0.0);
   if (this->Quadric)
   {
@@ -288,27 +296,54 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
     g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
     return QuadricValue(q, x, y, z);
   }
-  double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
+  // Power tables shifted by one, with a zero below x^0: px[i − 1] is 0 for i = 0, so
+  // every term adds its three partials without a branch (c·i is 0 there anyway).
+  double bx[MaxDegree + 2], by[MaxDegree + 2], bz[MaxDegree + 2];
+  bx[0] = by[0] = bz[0] = 0.0;
+  double* px = bx + 1;
+  double* py = by + 1;
+  double* pz = bz + 1;
   this->PowerTables(p, px, py, pz);
-  double v = 0.0;
-  g[0] = g[1] = g[2] = 0.0;
+  const int n = std::max(this->Degree, 0);
+  if (!(std::isfinite(px[n]) && std::isfinite(py[n]) && std::isfinite(pz[n])))
+  {
+    // A power overflowed (far outside any model): the terms without that variable
+    // must not meet 0·inf. Term by term with branches, as the partials are defined.
+    double v = 0.0;
+    g[0] = g[1] = g[2] = 0.0;
+    for (const auto& t : this->Terms)
+    {
+      const double c = t.Coefficient;
+      v += c * px[t.I] * py[t.J] * pz[t.K];
+      if (t.I > 0)
+      {
+        g[0] += c * t.I * px[t.I - 1] * py[t.J] * pz[t.K];
+      }
+      if (t.J > 0)
+      {
+        g[1] += c * t.J * px[t.I] * py[t.J - 1] * pz[t.K];
+      }
+      if (t.K > 0)
+      {
+        g[2] += c * t.K * px[t.I] * py[t.J] * pz[t.K - 1];
+      }
+    }
+    return v;
+  }
+  double v = 0.0, g0 = 0.0, g1 = 0.0, g2 = 0.0;
+  const double* scaled = this->Scaled3.data();
   for (const auto& t : this->Terms)
   {
     const double c = t.Coefficient;
     v += c * px[t.I] * py[t.J] * pz[t.K];
-    if (t.I > 0)
-    {
-      g[0] += c * t.I * px[t.I - 1] * py[t.J] * pz[t.K];
-    }
-    if (t.J > 0)
-    {
-      g[1] += c * t.J * px[t.I] * py[t.J - 1] * pz[t.K];
-    }
-    if (t.K > 0)
-    {
-      g[2] += c * t.K * px[t.I] * py[t.J] * pz[t.K - 1];
-    }
+    g0 += scaled[0] * px[t.I - 1] * py[t.J] * pz[t.K];
+    g1 += scaled[1] * px[t.I] * py[t.J - 1] * pz[t.K];
+    g2 += scaled[2] * px[t.I] * py[t.J] * pz[t.K - 1];
+    scaled += 3;
   }
+  g[0] = g0;
+  g[1] = g1;
+  g[2] = g2;
   return v;
 }
 

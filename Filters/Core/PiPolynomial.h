@@ -121,6 +121,9 @@ private:
   // Degree <= 2 (spheres, cylinders, quadrics: most factors) is evaluated from dense
   // coefficients: 1, x, y, z, x², y², z², xy, xz, yz.
   bool Quadric = true;
+  // Per term: its coefficient times each power, c·i, c·j, c·k (Summarize), so the
+  // gradient needs no branch or conversion per term.
+  std::vector<double> Scaled3;
   double Q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
 };
 

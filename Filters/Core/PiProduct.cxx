@@ -879,9 +879,19 @@ int ProductKernel::ClassifyBox(const double box[6]) const
   {
     return 0;
   }
-  thread_local std::vector<Interval> enclosures;
-  enclosures.resize(this->Factors.size());
-  for (size_t i = 0; i < this->Factors.size(); ++i)
+  // On the stack for the usual few factors (a thread_local vector costs a TLS lookup
+  // per call in a shared library).
+  constexpr size_t Small = 32;
+  Interval local[Small];
+  const size_t n = this->Factors.size();
+  Interval* enclosures = local;
+  if (n > Small)
+  {
+    thread_local std::vector<Interval> large;
+    large.resize(n);
+    enclosures = large.data();
+  }
+  for (size_t i = 0; i < n; ++i)
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
     if (!f.EvaluateTaylor(box, enclosures[i], nullptr))
@@ -889,7 +899,7 @@ int ProductKernel::ClassifyBox(const double box[6]) const
       enclosures[i] = f.EvaluateInterval(box);
     }
   }
-  return SignOfProductMinus(enclosures.data(), enclosures.size(), this->Blending);
+  return SignOfProductMinus(enclosures, n, this->Blending);
 }
 
 int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) const
@@ -899,11 +909,23 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
     return 0;
   }
   const size_t n = this->Factors.size();
-  thread_local std::vector<Interval> whole, parts;
-  thread_local std::vector<char> expanded;
-  whole.resize(n);
-  parts.resize(8 * n);
-  expanded.resize(n);
+  constexpr size_t Small = 16;
+  Interval wholeLocal[Small], partsLocal[8 * Small];
+  char expandedLocal[Small];
+  Interval* whole = wholeLocal;
+  Interval* parts = partsLocal;
+  char* expanded = expandedLocal;
+  if (n > Small)
+  {
+    thread_local std::vector<Interval> wholeLarge, partsLarge;
+    thread_local std::vector<char> expandedLarge;
+    wholeLarge.resize(n);
+    partsLarge.resize(8 * n);
+    expandedLarge.resize(n);
+    whole = wholeLarge.data();
+    parts = partsLarge.data();
+    expanded = expandedLarge.data();
+  }
   for (size_t i = 0; i < n; ++i)
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
@@ -921,7 +943,7 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
       whole[i] = f.EvaluateInterval(box);
     }
   }
-  const int sign = SignOfProductMinus(whole.data(), n, this->Blending);
+  const int sign = SignOfProductMinus(whole, n, this->Blending);
   if (sign != 0)
   {
     return sign;
@@ -942,7 +964,7 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
         parts[o * n + i] = this->Factors[i].Polynomial.EvaluateInterval(sub);
       }
     }
-    octants[o] = SignOfProductMinus(parts.data() + o * n, n, this->Blending);
+    octants[o] = SignOfProductMinus(parts + o * n, n, this->Blending);
   }
   return 0;
 }
