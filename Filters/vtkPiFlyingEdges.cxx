@@ -827,6 +827,14 @@ public:
         this->Queue.push_back(b);
       }
     };
+    // A skipped block met by the flood: reached (and queued) if it is a free one.
+    auto reachSkipped = [&](vtkIdType b) {
+      if (this->BlockState[b] == FreeBlock)
+      {
+        this->BlockState[b] = ReachedBlock;
+        push(b);
+      }
+    };
     // Seeds: every free point on the boundary of the grid.
     for (vtkIdType b = 0; b < static_cast<vtkIdType>(this->G.Sign.size()); ++b)
     {
@@ -840,11 +848,7 @@ public:
       }
       if (this->G.Sign[b] != 0)
       {
-        if (this->BlockState[b] == FreeBlock)
-        {
-          this->BlockState[b] = ReachedBlock;
-          push(b);
-        }
+        reachSkipped(b);
         continue;
       }
       int first[3], last[3];
@@ -892,11 +896,7 @@ public:
               const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
               if (this->G.Sign[nb] != 0)
               {
-                if (this->BlockState[nb] == FreeBlock)
-                {
-                  this->BlockState[nb] = ReachedBlock;
-                  push(nb);
-                }
+                reachSkipped(nb);
                 continue;
               }
               int first[3], last[3];
@@ -938,10 +938,9 @@ public:
           const int plane = side ? n[a] : 0;
           if (this->G.Sign[nb] != 0)
           {
-            if (this->BlockState[nb] == FreeBlock && this->FaceReached(reached, a, plane, n))
+            if (this->FaceReached(reached, a, plane, n))
             {
-              this->BlockState[nb] = ReachedBlock;
-              push(nb);
+              reachSkipped(nb);
             }
             continue;
           }
