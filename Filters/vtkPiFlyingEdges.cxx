@@ -48,6 +48,7 @@
 #include <deque>
 #include <memory>
 #include <type_traits>
+#include <utility>
 #include <new>
 #include <vector>
 
@@ -480,6 +481,23 @@ struct SampleRows
   const std::vector<double>* Coefficients;
   vtkPiFlyingEdges* Algorithm;
   std::atomic<bool>* Abort;
+  // Per block row (bz·Count[1] + by): its first and one past its last active x block.
+  std::vector<std::pair<int, int>> Span;
+
+  // (Not named Initialize: vtkSMPTools would take it for a per-thread initializer.)
+  void Prepare()
+  {
+    const int* count = this->G->Count;
+    this->Span.assign(size_t(count[1]) * count[2], { count[0], 0 });
+    for (const int b : this->G->Active)
+    {
+      int c[3];
+      this->G->BlockCoordinates(b, c);
+      std::pair<int, int>& span = this->Span[size_t(c[2]) * count[1] + c[1]];
+      span.first = std::min(span.first, c[0]);
+      span.second = std::max(span.second, c[0] + 1);
+    }
+  }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
@@ -506,7 +524,17 @@ struct SampleRows
       const int j = static_cast<int>(row % d[1]), k = static_cast<int>(row / d[1]);
       int ys[2], zs[2];
       const int ny = this->G->Containing(j, 1, ys), nz = this->G->Containing(k, 2, zs);
-      for (int bx = 0; bx < this->G->Count[0]; ++bx)
+      // Only the x blocks between the first and last active ones of these block rows.
+      int from = this->G->Count[0], to = 0;
+      for (int a = 0; a < ny; ++a)
+        for (int b = 0; b < nz; ++b)
+        {
+          const std::pair<int, int>& span = this->Span[size_t(zs[b]) * this->G->Count[1] + ys[a]];
+          from = std::min(from, span.first);
+          to = std::max(to, span.second);
+        }
+      std::fill(need.begin(), need.end(), 0);
+      for (int bx = from; bx < to; ++bx)
       {
         char any = 0;
         for (int a = 0; a < ny; ++a)
@@ -2033,7 +2061,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   std::atomic<bool> abort{ false };
   if (kernel && kernel->IsPolynomial())
   {
-    SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort };
+    SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
+    sample.Prepare();
     vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), sample);
   }
   else
