@@ -1463,6 +1463,64 @@ struct VertexAttributes
     return s;
   }
 
+  // The same for products whose F leaves the double range (thousands of factors, or F
+  // beyond 1e200 at an end): Newton's method on F with the product kept as a logarithm
+  // (the step (1 − r/P) / Σ f_i'/f_i needs only ln|P| and Σ f_i'/f_i), safeguarded by
+  // bisection in the bracket the exact sign of F gives.
+  // −1 when r = 0 (the roots are a factor's zeros: the caller's regula falsi).
+  static double LogNewton(const pisurf::ProductKernel* kernel, const double* line, int axis,
+    double x0, double dx, double t, double va, double width)
+  {
+    const double r = kernel->GetBlending();
+    if (r == 0.0)
+    {
+      return -1.0;
+    }
+    const double logR = std::log(std::fabs(r));
+    const int signR = r > 0 ? 1 : -1;
+    double lo = 0.0, hi = 1.0, s = std::max(0.0, std::min(1.0, t));
+    double last = 1.0, older = 1.0; // the last two steps
+    for (int it = 0; it < 100; ++it)
+    {
+      double F, logP, slope;
+      int signP;
+      kernel->EvaluateOnAxisLog(line, axis, x0 + s * dx, F, signP, logP, slope);
+      if (F == 0.0)
+      {
+        return s;
+      }
+      ((F < 0) == (va < 0) ? lo : hi) = s;
+      if (hi - lo <= width)
+      {
+        return 0.5 * (lo + hi);
+      }
+      // F' = P·Σ f_i'/f_i, so the Newton step on F is (1 − r/P) / Σ f_i'/f_i, with r/P
+      // from the logarithms (never overflows; inf only where P is far below r).
+      // The Newton step on F, (1 − r/P) / Σ f_i'/f_i, with r/P from the logarithms;
+      // bisection where P = 0, where the step leaves the bracket, or where it is not
+      // half the step before the last (Newton crawling down an exponential-like F).
+      double next = 0.5 * (lo + hi);
+      if (signP != 0 && std::isfinite(slope) && slope != 0.0)
+      {
+        const double ratio = (signP == signR ? 1.0 : -1.0) * std::exp(logR - logP);
+        const double newton = s - (1.0 - ratio) / (slope * dx);
+        if (newton > lo && newton < hi && std::fabs(newton - s) <= 0.5 * older)
+        {
+          next = newton;
+        }
+      }
+      const double step = std::fabs(next - s);
+      older = last;
+      last = step;
+      s = next;
+      if (step <= width)
+      {
+        return s;
+      }
+    }
+    return 0.5 * (lo + hi);
+  }
+
   double Refine(const double a[3], const double b[3], double t, double va, double vb) const
   {
     // A field that can certify the first root from the positive end in one pass (see
@@ -1521,7 +1579,8 @@ struct VertexAttributes
       heapLine.resize(kernel->GetLineCoefficientCount());
       line = heapLine.data();
     }
-    const bool onAxis = kernel && !compressed && kernel->RestrictToAxis(a, axis, line);
+    const bool restricted = kernel && kernel->RestrictToAxis(a, axis, line);
+    const bool onAxis = restricted && !compressed;
     auto along = [&](double s) {
       if (onAxis)
       {
@@ -1618,6 +1677,14 @@ struct VertexAttributes
     {
       root = this->Newton(kernel, line, axis, a[axis], b[axis] - a[axis], t, va, small,
         this->Tolerance / length);
+    }
+    if (root < 0.0 && restricted)
+    {
+      // (Where F is beyond 1e200 at an end, t leans on that end: start from the
+      // interpolation of sign(F)·ln(1 + |F|) instead.)
+      const double start = compressed && va != vb ? va / (va - vb) : t;
+      root = LogNewton(
+        kernel, line, axis, a[axis], b[axis] - a[axis], start, va, this->Tolerance / length);
     }
     if (root < 0.0)
     {

@@ -42,8 +42,10 @@
  *    so the root is bracketed. Where every factor is a polynomial in an axis-aligned
  *    frame, the factors are restricted to the edge's line once (one pass over their
  *    terms) and Newton's method on the restricted product, kept in the bracket, finds
- *    the root in about three steps; otherwise (and where the plain product would leave
- *    the double range) regula falsi (Illinois) on F, or on the overflow-free
+ *    the root in about three steps; where the plain product would leave the double
+ *    range (thousands of factors, F beyond 1e200), Newton steps on F with the product
+ *    kept as a logarithm, (1 − r/P) / Σ f_i'/f_i, safeguarded by bisection; otherwise
+ *    (rotated frames, r = 0) regula falsi (Illinois) on F, or on the overflow-free
  *    sign(F)·ln(1 + |F|) where F is beyond 1e200 at an end, with bisection as a
  *    fallback, finds it (|F| below 1e-12 of its end values, or a bracket below 1e-13 of
  *    the model size: |F|/|∇F| <= 1e-9 × size is tested), even where F spans thousands of

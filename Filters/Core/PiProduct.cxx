@@ -212,6 +212,49 @@ double ProductKernel::EvaluateOnAxis(const double* coefficients, int axis, doubl
   return this->Finish(m, e);
 }
 
+void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, double x,
+  double& value, int& productSign, double& logProduct, double& logSlope) const
+{
+  double m = 1.0, slope = 0.0;
+  long e = 0;
+  bool zero = false;
+  for (const Factor& f : this->Factors)
+  {
+    const PolynomialFactor& pf = f.Polynomial;
+    const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
+    const double u = pf.A[axis][axis] * x + pf.B[axis];
+    double v = 0.0, d = 0.0;
+    for (int k = n - 1; k >= 0; --k)
+    {
+      d = d * u + v;
+      v = v * u + coefficients[k];
+    }
+    if (v == 0.0)
+    {
+      zero = true;
+    }
+    else
+    {
+      slope += d * pf.A[axis][axis] / v;
+    }
+    Accumulate(m, e, v);
+    coefficients += n;
+  }
+  value = this->Finish(m, e);
+  if (zero || m == 0.0)
+  {
+    productSign = 0;
+    logProduct = -std::numeric_limits<double>::infinity();
+    logSlope = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  productSign = m > 0 ? 1 : -1;
+  int ex;
+  const double mantissa = pisurf::Frexp(std::fabs(m), &ex);
+  logProduct = std::log(mantissa) + static_cast<double>(e + ex) * 0.69314718055994530942;
+  logSlope = slope;
+}
+
 bool ProductKernel::EvaluateOnAxisWithSlope(
   const double* coefficients, int axis, double x, double& value, double& slope) const
 {

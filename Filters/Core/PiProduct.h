@@ -151,6 +151,13 @@ public:
   /// finite (then use EvaluateOnAxis).
   bool EvaluateOnAxisWithSlope(
     const double* coefficients, int axis, double x, double& value, double& slope) const;
+  /// The same point for products of any size: F (clamped, exact sign, as
+  /// EvaluateOnAxis), the sign of P = Π f_i (0 if a factor is 0), ln|P| and its
+  /// derivative d ln|P| / dx = Σ f_i'/f_i (NaN where P = 0), from the scaled product:
+  /// never overflows, for Newton steps on ln|P| = ln|r| where F itself leaves the double
+  /// range.
+  void EvaluateOnAxisLog(const double* coefficients, int axis, double x, double& value,
+    int& productSign, double& logProduct, double& logSlope) const;
 
   /// The factor with the smallest first-order distance |f_i|/|∇f_i| to its own zero set
   /// at p (the primitive whose patch p lies on); −1 without factors.

@@ -1531,3 +1531,54 @@ TEST(ProductKernel, AxisRestrictionMatchesEvaluation)
   const double p[3] = { 0.1, 0.2, 0.3 };
   EXPECT_FALSE(rotated.RestrictToAxis(p, 0, line2.data()));
 }
+
+// For products far outside the double range, EvaluateOnAxisLog gives ln|P| as the
+// overflow-safe evaluation does (r = 0: F = P), F's exact sign with r ≠ 0, and
+// d ln|P|/dx as a difference quotient of ln|P| shows.
+TEST(ProductKernel, AxisLogarithmOfHugeProducts)
+{
+  std::vector<Factor> fs;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 400; ++i)
+  {
+    const double c[3] = { u(rng), u(rng), u(rng) };
+    fs.push_back(Sphere(c, 0.3));
+  }
+  const ProductKernel product(fs, 0.0), blended(fs, 0.01);
+  std::vector<double> line(product.GetLineCoefficientCount());
+  int checked = 0;
+  for (int n = 0; n < 100; ++n)
+  {
+    const double p[3] = { 2.0 * u(rng), 2.0 * u(rng), 2.0 * u(rng) };
+    const int axis = n % 3;
+    ASSERT_TRUE(product.RestrictToAxis(p, axis, line.data()));
+    double F, logP, slope;
+    int sign;
+    product.EvaluateOnAxisLog(line.data(), axis, p[axis], F, sign, logP, slope);
+    double logAbs;
+    const int expected = product.EvaluateSignAndLog(p, logAbs);
+    ASSERT_EQ(sign, expected);
+    if (sign == 0)
+    {
+      continue;
+    }
+    ++checked;
+    EXPECT_NEAR(logP, logAbs, 1e-9 * (1.0 + std::fabs(logAbs)));
+    EXPECT_GT(std::fabs(logP), 100.0); // far beyond the double range's ~709
+    const double h = 1e-6;
+    double F1, logP1, slope1, F0, logP0, slope0;
+    int s1, s0;
+    product.EvaluateOnAxisLog(line.data(), axis, p[axis] + h, F1, s1, logP1, slope1);
+    product.EvaluateOnAxisLog(line.data(), axis, p[axis] - h, F0, s0, logP0, slope0);
+    EXPECT_NEAR(slope, (logP1 - logP0) / (2 * h), 1e-4 * (1.0 + std::fabs(slope)));
+    // With r: the sign of F = P − r, as the scaled evaluation gives it.
+    double Fr, logPr, sloper;
+    int signr;
+    blended.EvaluateOnAxisLog(line.data(), axis, p[axis], Fr, signr, logPr, sloper);
+    const double direct = blended.Evaluate(p);
+    EXPECT_EQ(Fr > 0, direct > 0);
+    EXPECT_EQ(Fr < 0, direct < 0);
+  }
+  EXPECT_GT(checked, 90);
+}
