@@ -109,8 +109,9 @@ public:
 
   /// Over the box [b0,b1]x[b2,b3]x[b4,b5]: +1 if F > 0 everywhere, −1 if F < 0
   /// everywhere, 0 if the surface may cross it (or a factor is not a polynomial). From
-  /// interval enclosures of the factors, combined in sign and log-magnitude, so it
-  /// never overflows. Cost: O(Σ terms).
+  /// enclosures of the factors (PolynomialFactor::EvaluateTaylor up to degree 8, else
+  /// EvaluateInterval), multiplied in doubles where nothing can overflow, else combined
+  /// in sign and log-magnitude, so it never overflows. Cost: O(Σ degree⁴ + terms).
   int ClassifyBox(const double box[6]) const;
   /// ClassifyBox and, when that gives 0, the same for the box's eight octants (octant o
   /// takes the upper half on axis a when bit a of o is set; halves split at
@@ -154,8 +155,8 @@ public:
   /// The same point for products of any size: F (clamped, exact sign, as
   /// EvaluateOnAxis), the sign of P = Π f_i (0 if a factor is 0), ln|P| and its
   /// derivative d ln|P| / dx = Σ f_i'/f_i (NaN where P = 0), from the scaled product:
-  /// never overflows, for Newton steps on ln|P| = ln|r| where F itself leaves the double
-  /// range.
+  /// never overflows. Newton's step on F is then (1 − r/P) / Σ f_i'/f_i with r/P from
+  /// the logarithms, where F itself leaves the double range.
   void EvaluateOnAxisLog(const double* coefficients, int axis, double x, double& value,
     int& productSign, double& logProduct, double& logSlope) const;
 
