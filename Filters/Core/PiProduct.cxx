@@ -1008,6 +1008,13 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
       }
     }
     octants[o] = SignOfProductMinus(parts + o * n, n, this->Blending);
+    if (octants[o] == 0)
+    {
+      // The box holds the surface as far as the octants can tell: the rest are not
+      // needed to know that (reported undecided).
+      std::fill(octants + o + 1, octants + 8, 0);
+      break;
+    }
   }
   return 0;
 }

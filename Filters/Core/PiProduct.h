@@ -117,7 +117,9 @@ public:
   /// takes the upper half on axis a when bit a of o is set; halves split at
   /// (lo + hi)/2), from one Taylor expansion of each factor about the box's centre
   /// (PolynomialFactor::EvaluateTaylor; factors without one use EvaluateInterval on
-  /// each octant). Returns the box's sign; `octants` is written only when it is 0.
+  /// each octant). Returns the box's sign; `octants` is written only when it is 0, and
+  /// then only up to the first undecided octant (the ones after it are given 0: once
+  /// an octant may hold the surface, so may the box).
   int ClassifyBoxAndOctants(const double box[6], int octants[8]) const;
 
   /// Row restriction in two steps, for callers that evaluate the same line many times:
