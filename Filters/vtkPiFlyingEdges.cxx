@@ -1149,9 +1149,9 @@ private:
 
 // PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge
 // belongs to the block that holds its lower end point (half-open ranges, closed at the
-// end of the grid), which numbers its vertex; triangles then look their edges' vertices
-// up in the owner's table. Mode Count counts both, Edges writes the edge tables and the
-// vertices, Triangles (after all tables exist) writes the triangles.
+// end of the grid), which numbers its vertex; triangles then find their edges' vertices
+// in the owner's edge masks and row offsets. Mode Count builds the masks and counts
+// both, Edges writes the vertices' edges, Triangles writes the triangles.
 struct Contour
 {
   enum Mode
