@@ -171,12 +171,7 @@ struct Evaluator
       for (int o = 0; o < 8 && sign == 0; ++o)
       {
         double sub[6];
-        for (int a = 0; a < 3; ++a)
-        {
-          const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
-          sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
-          sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
-        }
+        pisurf::OctantBox(box, o, sub);
         octants[o] = this->Field->ClassifyBox(sub);
         if (octants[o] == 0)
         {
@@ -230,6 +225,12 @@ struct Evaluator
 constexpr int BlockCells = 8;
 constexpr int BlockPoints = BlockCells + 1;
 constexpr double ValueLimit = 1e300;
+// F as the passes store it: within ±ValueLimit, so that differences of neighbours stay
+// finite (the sign of F is exact, whatever its magnitude).
+inline double Limited(double F)
+{
+  return std::max(-ValueLimit, std::min(ValueLimit, F));
+}
 
 using pisurf::mc::Corner;
 
@@ -282,6 +283,34 @@ struct Grid
       first[a] = this->First(c, a);
       last[a] = this->Last(c, a);
     }
+  }
+  // The cells of block c along each axis (8, fewer in the last blocks): its points run
+  // over the local indices 0..n[a].
+  void CellCounts(const int c[3], int n[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      n[a] = this->Last(c, a) - this->First(c, a);
+    }
+  }
+  // f(neighbour block id, offset d) for each of the (up to) 26 blocks sharing points
+  // with block c.
+  template <typename Function>
+  void ForEachNeighbour(const int c[3], Function f) const
+  {
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int m[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
+          if ((dx == 0 && dy == 0 && dz == 0) || m[0] < 0 || m[1] < 0 || m[2] < 0 ||
+            m[0] >= this->Count[0] || m[1] >= this->Count[1] || m[2] >= this->Count[2])
+          {
+            continue;
+          }
+          const int d[3] = { dx, dy, dz };
+          f(this->BlockId(m[0], m[1], m[2]), d);
+        }
   }
   // Blocks along one axis whose point range contains index i.
   int Containing(int i, int a, int out[2]) const
@@ -422,7 +451,7 @@ struct SampleBlocks
               for (int i = 0; i <= last[0] - first[0]; ++i)
               {
                 double& x = v[(k * BlockPoints + j) * BlockPoints + i];
-                x = std::max(-ValueLimit, std::min(ValueLimit, x));
+                x = Limited(x);
               }
           continue;
         }
@@ -447,7 +476,7 @@ struct SampleBlocks
               coefficients, first - mid, last - first + 1, unused, unused, row);
             for (int i = 0; i <= last - first; ++i)
             {
-              row[i] = std::max(-ValueLimit, std::min(ValueLimit, row[i]));
+              row[i] = Limited(row[i]);
             }
             continue;
           }
@@ -459,7 +488,7 @@ struct SampleBlocks
             const double F = this->Kernel
               ? this->Kernel->EvaluateRestricted(coefficients, i - mid, p)
               : this->Field->Evaluate(p);
-            out[i - c[0] * BlockCells] = std::max(-ValueLimit, std::min(ValueLimit, F));
+            out[i - c[0] * BlockCells] = Limited(F);
           }
         }
       }
@@ -533,7 +562,6 @@ struct SampleRows
           from = std::min(from, span.first);
           to = std::max(to, span.second);
         }
-      std::fill(need.begin(), need.end(), 0);
       for (int bx = from; bx < to; ++bx)
       {
         char any = 0;
@@ -545,7 +573,7 @@ struct SampleRows
         need[bx] = any;
       }
       const double* coefficients = this->Coefficients->data() + r * n;
-      for (int bx = 0; bx < this->G->Count[0];)
+      for (int bx = from; bx < to;)
       {
         if (!need[bx])
         {
@@ -553,7 +581,7 @@ struct SampleRows
           continue;
         }
         int last = bx;
-        while (last + 1 < this->G->Count[0] && need[last + 1])
+        while (last + 1 < to && need[last + 1])
         {
           ++last;
         }
@@ -563,11 +591,11 @@ struct SampleRows
           coefficients, first - mid, stop - first + 1, unused, unused, values.data() + first);
         for (int i = first; i <= stop; ++i)
         {
-          values[i] = std::max(-ValueLimit, std::min(ValueLimit, values[i]));
+          values[i] = Limited(values[i]);
         }
         bx = last + 1;
       }
-      for (int bx = 0; bx < this->G->Count[0]; ++bx)
+      for (int bx = from; bx < to; ++bx)
       {
         if (!need[bx])
         {
@@ -770,9 +798,9 @@ public:
       {
         int c[3];
         grid->BlockCoordinates(grid->Active[s], c);
-        int first[3], last[3];
+        int first[3], last[3], n[3];
         grid->Range(c, first, last);
-        const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+        grid->CellCounts(c, n);
         const double* v = grid->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
         unsigned char off[BlockPoints * BlockPoints * BlockPoints];
         const bool checkField = field && outside > 0;
@@ -810,36 +838,26 @@ public:
         // Skipped neighbours (all 26) decide their shared points: free where they are
         // free blocks, not free otherwise (clearing wins).
         for (int pass = 0; pass < 2; ++pass)
-          for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-              for (int dx = -1; dx <= 1; ++dx)
+        {
+          grid->ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
+            if (grid->Sign[nb] == 0 || (blockState[nb] == FreeBlock) != (pass == 0))
+            {
+              return;
+            }
+            int lo[3], hi[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              SharedPoints(d[a], n[a], lo[a], hi[a]);
+            }
+            const unsigned xs = PointMask(lo[0], hi[0]);
+            for (int lk = lo[2]; lk <= hi[2]; ++lk)
+              for (int lj = lo[1]; lj <= hi[1]; ++lj)
               {
-                const int m[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
-                if ((dx == 0 && dy == 0 && dz == 0) || m[0] < 0 || m[1] < 0 || m[2] < 0 ||
-                  m[0] >= grid->Count[0] || m[1] >= grid->Count[1] || m[2] >= grid->Count[2])
-                {
-                  continue;
-                }
-                const vtkIdType nb = grid->BlockId(m[0], m[1], m[2]);
-                if (grid->Sign[nb] == 0 || (blockState[nb] == FreeBlock) != (pass == 0))
-                {
-                  continue;
-                }
-                int lo[3], hi[3];
-                const int d[3] = { dx, dy, dz };
-                for (int a = 0; a < 3; ++a)
-                {
-                  lo[a] = d[a] < 0 ? 0 : d[a] > 0 ? n[a] : 0;
-                  hi[a] = d[a] < 0 ? 0 : n[a];
-                }
-                const unsigned xs = ((1u << (hi[0] + 1)) - 1u) & ~((1u << lo[0]) - 1u);
-                for (int lk = lo[2]; lk <= hi[2]; ++lk)
-                  for (int lj = lo[1]; lj <= hi[1]; ++lj)
-                  {
-                    std::uint16_t& row = fr[lk * BlockPoints + lj];
-                    row = static_cast<std::uint16_t>(pass == 0 ? row | xs : row & ~xs);
-                  }
+                std::uint16_t& row = fr[lk * BlockPoints + lj];
+                row = static_cast<std::uint16_t>(pass == 0 ? row | xs : row & ~xs);
               }
+          });
+        }
       }
     });
   }
@@ -879,9 +897,8 @@ public:
         reachSkipped(b);
         continue;
       }
-      int first[3], last[3];
-      this->G.Range(c, first, last);
-      const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+      int n[3];
+      this->G.CellCounts(c, n);
       bool any = false;
       for (int a = 0; a < 3; ++a)
       {
@@ -911,46 +928,32 @@ public:
       if (this->G.Sign[b] != 0)
       {
         // A reached skipped block: every neighbour sharing points with it.
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-            {
-              const int m[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
-              if ((dx == 0 && dy == 0 && dz == 0) || m[0] < 0 || m[1] < 0 || m[2] < 0 ||
-                m[0] >= count[0] || m[1] >= count[1] || m[2] >= count[2])
-              {
-                continue;
-              }
-              const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
-              if (this->G.Sign[nb] != 0)
-              {
-                reachSkipped(nb);
-                continue;
-              }
-              int first[3], last[3];
-              this->G.Range(m, first, last);
-              const int d[3] = { dx, dy, dz };
-              int lo[3], hi[3];
-              for (int a = 0; a < 3; ++a)
-              {
-                // The neighbour's points shared with this block.
-                const int na = last[a] - first[a];
-                lo[a] = d[a] > 0 ? 0 : d[a] < 0 ? na : 0;
-                hi[a] = d[a] > 0 ? 0 : na;
-              }
-              if (this->Seed(this->G.Slot[nb], lo, hi))
-              {
-                push(nb);
-              }
-            }
+        this->G.ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
+          if (this->G.Sign[nb] != 0)
+          {
+            reachSkipped(nb);
+            return;
+          }
+          // The neighbour's points shared with this block (it sees this block at −d).
+          int m[3], nn[3], lo[3], hi[3];
+          this->G.BlockCoordinates(nb, m);
+          this->G.CellCounts(m, nn);
+          for (int a = 0; a < 3; ++a)
+          {
+            SharedPoints(-d[a], nn[a], lo[a], hi[a]);
+          }
+          if (this->Seed(this->G.Slot[nb], lo, hi))
+          {
+            push(nb);
+          }
+        });
         continue;
       }
       // An active block: flood it, then hand its reached face points to the neighbours.
       const int slot = this->G.Slot[b];
       this->FloodBlock(slot);
-      int first[3], last[3];
-      this->G.Range(c, first, last);
-      const int n[3] = { last[0] - first[0], last[1] - first[1], last[2] - first[2] };
+      int n[3];
+      this->G.CellCounts(c, n);
       const std::uint16_t* reached = this->Reached.GetPointer() + size_t(slot) * Rows;
       for (int a = 0; a < 3; ++a)
       {
@@ -972,9 +975,8 @@ public:
             }
             continue;
           }
-          int nfirst[3], nlast[3];
-          this->G.Range(m, nfirst, nlast);
-          const int nn[3] = { nlast[0] - nfirst[0], nlast[1] - nfirst[1], nlast[2] - nfirst[2] };
+          int nn[3];
+          this->G.CellCounts(m, nn);
           if (this->PassFace(reached, a, plane, n, this->G.Slot[nb], side ? 0 : nn[a]))
           {
             push(nb);
@@ -999,12 +1001,25 @@ private:
   static constexpr char FreeBlock = 1;
   static constexpr char ReachedBlock = 2;
 
+  // The local indices [lo, hi] on one axis of a block (n cells there) that it shares
+  // with its neighbour at offset d (−1, 0 or +1) on that axis.
+  static void SharedPoints(int d, int n, int& lo, int& hi)
+  {
+    lo = d > 0 ? n : 0;
+    hi = d < 0 ? 0 : n;
+  }
+  // The bits lo..hi of a row mask.
+  static unsigned PointMask(int lo, int hi)
+  {
+    return ((1u << (hi + 1)) - 1u) & ~((1u << lo) - 1u);
+  }
+
   // Marks the free points of rows [lo, hi] of block `slot` reached; true if any is new.
   bool Seed(int slot, const int lo[3], const int hi[3])
   {
     const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
     std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
-    const unsigned xs = ((1u << (hi[0] + 1)) - 1u) & ~((1u << lo[0]) - 1u);
+    const unsigned xs = PointMask(lo[0], hi[0]);
     bool added = false;
     for (int lk = lo[2]; lk <= hi[2]; ++lk)
       for (int lj = lo[1]; lj <= hi[1]; ++lj)
@@ -1091,9 +1106,9 @@ private:
   {
     int c[3];
     this->G.BlockCoordinates(this->G.Active[slot], c);
-    int first[3], last[3];
-    this->G.Range(c, first, last);
-    const int ny = last[1] - first[1], nz = last[2] - first[2];
+    int n[3];
+    this->G.CellCounts(c, n);
+    const int ny = n[1], nz = n[2];
     const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
     std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
     auto spread = [](unsigned r, unsigned f) {
@@ -1230,11 +1245,10 @@ struct Contour
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
       const double* v = this->G->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
-      int f[3], l[3];
+      int f[3], l[3], n[3];
       this->G->Range(c, f, l);
-      // Cells along each axis in this block (8, fewer in the last block), and the last
-      // owned lower end.
-      const int n[3] = { l[0] - f[0], l[1] - f[1], l[2] - f[2] };
+      // Cells along each axis in this block, and the last owned lower end.
+      this->G->CellCounts(c, n);
       const int h[3] = { std::min(n[0], BlockCells - 1), std::min(n[1], BlockCells - 1),
         std::min(n[2], BlockCells - 1) };
       std::uint16_t* rows = this->RowSigns + size_t(s) * Rows;

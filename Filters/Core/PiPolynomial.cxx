@@ -655,15 +655,8 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
   // Powers of the two fixed variables only.
   const int u = (axis + 1) % 3, w = (axis + 2) % 3;
   double pu[MaxDegree + 1], pw[MaxDegree + 1];
-  pu[0] = pw[0] = 1.0;
-  for (int k = 1; k <= this->AxisDegree[u]; ++k)
-  {
-    pu[k] = pu[k - 1] * q[u];
-  }
-  for (int k = 1; k <= this->AxisDegree[w]; ++k)
-  {
-    pw[k] = pw[k - 1] * q[w];
-  }
+  Powers(q[u], this->AxisDegree[u], pu);
+  Powers(q[w], this->AxisDegree[w], pw);
   for (const auto& t : this->Terms)
   {
     const int e[3] = { t.I, t.J, t.K };

@@ -30,6 +30,18 @@ struct Interval
   bool Contains(double v) const { return this->Lo <= v && v <= this->Hi; }
 };
 
+/// Octant o of the box [b0,b1]x[b2,b3]x[b4,b5]: the upper half [c, hi] on axis a when
+/// bit a of o is set, the lower half [lo, c] otherwise, c = (lo + hi)/2 as computed.
+inline void OctantBox(const double box[6], int o, double sub[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
+    sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
+    sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
+  }
+}
+
 struct Monomial
 {
   double Coefficient;
@@ -149,6 +161,19 @@ inline double EvaluateUnivariate(const double* c, int n, double t)
   double v = 0.0;
   for (int i = n - 1; i >= 0; --i)
   {
+    v = v * t + c[i];
+  }
+  return v;
+}
+
+/// The same and its derivative (the two Horner chains side by side).
+inline double EvaluateUnivariateWithDerivative(const double* c, int n, double t, double& d)
+{
+  double v = 0.0;
+  d = 0.0;
+  for (int i = n - 1; i >= 0; --i)
+  {
+    d = d * t + v;
     v = v * t + c[i];
   }
   return v;

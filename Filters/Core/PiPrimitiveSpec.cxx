@@ -440,11 +440,7 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
       for (int o = 0; octants && o < 8; ++o)
       {
         double sub[6];
-        for (int a = 0; a < 3; ++a)
-        {
-          sub[2 * a] = (o >> a) & 1 ? c[a] : box[2 * a];
-          sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : c[a];
-        }
+        OctantBox(box, o, sub);
         this->LocalBox(sub, local);
         const Interval part = this->NaturalInterval(local, magnitude);
         octants[o].Lo = std::max(octants[o].Lo, part.Lo);

@@ -223,12 +223,8 @@ void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, doub
     const PolynomialFactor& pf = f.Polynomial;
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
     const double u = pf.A[axis][axis] * x + pf.B[axis];
-    double v = 0.0, d = 0.0;
-    for (int k = n - 1; k >= 0; --k)
-    {
-      d = d * u + v;
-      v = v * u + coefficients[k];
-    }
+    double d;
+    const double v = EvaluateUnivariateWithDerivative(coefficients, n, u, d);
     if (v == 0.0)
     {
       zero = true;
@@ -275,11 +271,7 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
     }
     else
     {
-      for (int m = n - 1; m >= 0; --m)
-      {
-        d = d * u + v;
-        v = v * u + coefficients[m];
-      }
+      v = EvaluateUnivariateWithDerivative(coefficients, n, u, d);
     }
     const double a = std::fabs(v);
     if (a > bound || (a != 0.0 && a < inverse))
@@ -326,8 +318,7 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   // the scaled one (whose rescaling is by exact powers of two); and F must be finite.
   // Otherwise the chunk goes point by point through EvaluateRestricted.
   constexpr int Chunk = 32;
-  const int k = std::max<int>(1, static_cast<int>(this->Factors.size()));
-  const double bound = pisurf::Ldexp(1.0, std::min(256, 1000 / k));
+  const double bound = this->PlainBound;
   const double inverse = 1.0 / bound;
   for (int start = 0; start < n; start += Chunk)
   {
@@ -994,12 +985,7 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
   for (int o = 0; o < 8; ++o)
   {
     double sub[6];
-    for (int a = 0; a < 3; ++a)
-    {
-      const double mid = 0.5 * (box[2 * a] + box[2 * a + 1]);
-      sub[2 * a] = (o >> a) & 1 ? mid : box[2 * a];
-      sub[2 * a + 1] = (o >> a) & 1 ? box[2 * a + 1] : mid;
-    }
+    OctantBox(box, o, sub);
     for (size_t i = 0; i < n; ++i)
     {
       if (!expanded[i])
