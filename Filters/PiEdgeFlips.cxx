@@ -496,18 +496,19 @@ PiEdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
   return result;
 }
 
-bool Fits32(vtkIdType triangles, vtkIdType points)
+}
+
+bool PiFitsInt32Cells(vtkIdType triangles, vtkIdType points)
 {
   return 3 * triangles < std::numeric_limits<std::int32_t>::max() &&
     points < std::numeric_limits<std::int32_t>::max();
-}
 }
 
 PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds)
 {
   // 32-bit half-edge ids when they fit: half the memory traffic.
-  if (Fits32(triangles, points))
+  if (PiFitsInt32Cells(triangles, points))
   {
     return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
   }
@@ -517,7 +518,7 @@ PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType trian
 PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds)
 {
-  if (Fits32(triangles, points))
+  if (PiFitsInt32Cells(triangles, points))
   {
     return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
   }

@@ -56,6 +56,10 @@ struct PiEdgeFlipResult
 /// Threaded with vtkSMPTools; the result does not depend on the number of threads.
 PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds);
+/// True when `triangles` triangles on `points` points fit vtkCellArray's 32-bit
+/// storage (every id and the connectivity's length below 2^31 − 1): the filters then
+/// store their cells in it, for half the memory.
+bool PiFitsInt32Cells(vtkIdType triangles, vtkIdType points);
 /// The same on 32-bit connectivity (vtkCellArray's 32-bit storage).
 PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds);

@@ -6,6 +6,7 @@
 #include "PiLastValidOutput.h"
 
 #include "PiBuffer.h"
+#include "PiEdgeFlips.h"
 #include "PiField.h"
 #include "PiModel.h"
 #include "PiProduct.h"
@@ -2255,7 +2256,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vertexT.Allocate(vertices);
   vertexEnds.Allocate(2 * vertices);
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory).
-  const bool narrow = 3.0 * double(triangles) < 2147483647.0 && double(vertices) < 2147483647.0;
+  const bool narrow = PiFitsInt32Cells(triangles, vertices);
   vtkNew<vtkIdTypeArray> connectivity;
   vtkNew<vtkTypeInt32Array> connectivity32;
   if (narrow)

@@ -2016,7 +2016,7 @@ int vtkPiImageTriangulator::RequestData(
     // (PiEdgeFlips.h): vertices stay, the boundary and the topology too.
     flipped = PiFlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, this->EdgeFlipRounds);
   };
-  if (3 * kept < VTK_INT_MAX && n < VTK_INT_MAX)
+  if (PiFitsInt32Cells(kept, n))
   {
     vtkNew<vtkTypeInt32Array> offsets, cells;
     compact(offsets.Get(), cells.Get());
