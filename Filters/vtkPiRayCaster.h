@@ -33,6 +33,13 @@
  * - SIX_AXIS_VIEWS: the six views above (ViewIndex 0..5 in the order −Z, −X, −Y, +Z,
  *   +X, +Y); THREE_AXIS_DIRECTIONS: −Z, −X, −Y with all hits.
  *
+ * Empty-space skipping (axis views, polynomial factors, SkipEmptySpace on): the rays of
+ * 32 × 32 pixel tiles are cut into boxes as deep as wide, and undecided boxes into
+ * octants down to 8 × 8 pixels, each classified by the kernel's rigorous enclosure of F
+ * (ProductKernel::ClassifyBox/ClassifyBoxAndOctants). A ray searches only the depth
+ * ranges of its column's undecided boxes, in increasing depth: the same roots, found on
+ * short segments (the cup, the table and ten spheres at 1024²: 1.4 to 1.7 times faster).
+ *
  * Output (points with one vertex each), point data: `Normals` (unit gradient),
  * `GradientMagnitude`, `Depth`, `PixelIndex` (i, j), `ViewIndex`, `HitIndex`
  * (0 = nearest), `Singular` (the gradient vanishes: |∇F|·h is at most
@@ -172,6 +179,16 @@ public:
   vtkGetMacro(SingularTolerance, double);
   ///@}
 
+  ///@{
+  /// Empty-space skipping for the axis views (default on): boxes of rays where the
+  /// model's enclosure proves F > 0 or F < 0 are not searched (it never skips a root;
+  /// see the class description). Off, every ray searches its whole segment: the same
+  /// hits, slower; for comparisons and tests.
+  vtkSetMacro(SkipEmptySpace, bool);
+  vtkGetMacro(SkipEmptySpace, bool);
+  vtkBooleanMacro(SkipEmptySpace, bool);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
 protected:
@@ -196,6 +213,7 @@ protected:
   bool ParallelProjection = false;
   double ParallelScale = 1.0;
   double SingularTolerance = 0.1;
+  bool SkipEmptySpace = true;
 
 private:
 #ifndef __VTK_WRAP__

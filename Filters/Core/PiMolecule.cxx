@@ -1106,13 +1106,14 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   {
     const double* c = &this->Centers[3 * i];
     const double rho2 = this->Rho2[i], r2 = this->R2[i], inverse = this->InvSpan[i];
+    const double cx = c[0];
     points.ForRowsNear(c, rho2, [&](int k, int j, int lo, int hi, double v1, double v2) {
       double* row = values + k * strideZ + j * strideY;
       for (int m = lo; m <= hi; ++m)
       {
         // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the
         // atom is beyond ρ changes nothing).
-        const double v0 = xs[m] - c[0];
+        const double v0 = xs[m] - cx;
         row[m] *= LocalTerm(v0 * v0 + v1 * v1 + v2 * v2, r2, rho2, inverse);
       }
     });

@@ -936,7 +936,8 @@ int ProductKernel::ClassifyBox(const double box[6]) const
   return SignOfProductMinus(enclosures, n, this->Blending);
 }
 
-int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) const
+int ProductKernel::ClassifyBoxAndOctants(
+  const double box[6], int octants[8], bool allOctants) const
 {
   if (!this->AllPolynomial)
   {
@@ -994,7 +995,7 @@ int ProductKernel::ClassifyBoxAndOctants(const double box[6], int octants[8]) co
       }
     }
     octants[o] = SignOfProductMinus(parts + o * n, n, this->Blending);
-    if (octants[o] == 0)
+    if (octants[o] == 0 && !allOctants)
     {
       // The box holds the surface as far as the octants can tell: the rest are not
       // needed to know that (reported undecided).

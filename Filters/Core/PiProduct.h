@@ -119,8 +119,9 @@ public:
   /// (PolynomialFactor::EvaluateTaylor; factors without one use EvaluateInterval on
   /// each octant). Returns the box's sign; `octants` is written only when it is 0, and
   /// then only up to the first undecided octant (the ones after it are given 0: once
-  /// an octant may hold the surface, so may the box).
-  int ClassifyBoxAndOctants(const double box[6], int octants[8]) const;
+  /// an octant may hold the surface, so may the box), unless `allOctants` asks for
+  /// every octant's sign (for a traversal that skips the decided ones).
+  int ClassifyBoxAndOctants(const double box[6], int octants[8], bool allOctants = false) const;
 
   /// Row restriction in two steps, for callers that evaluate the same line many times:
   /// RestrictLine fills GetLineCoefficientCount() coefficients (every polynomial

@@ -166,6 +166,49 @@ struct Workspace
   double Scratch[MaxDegree + 1];
 };
 
+// Roots arrive in increasing t. One within 2·tolerance of the last root added joins
+// its cluster: the tiny pieces on both sides of one root, or the chain of them where F
+// stays within the rounding slack around a multiple root (thousands of pieces wide
+// for a double root), report one root, at the middle of the cluster's first and last
+// members. A cluster is tangent when F has the same sign before and after it (at the
+// start of its first piece and the end of its last), or, where one of those values is
+// 0, when all its members are.
+class RootCluster
+{
+public:
+  RootCluster(std::vector<RayRoot>& roots, double tolerance)
+    : Roots(roots)
+    , Start(roots.size())
+    , Tolerance(tolerance)
+  {
+  }
+  // The root t of a piece where F is `before` at its start and `after` at its end.
+  void Add(double t, bool tangent, double before, double after)
+  {
+    if (this->Roots.size() > this->Start && t - this->Last <= 2.0 * this->Tolerance)
+    {
+      this->Last = t;
+      this->AllTangent = this->AllTangent && tangent;
+      RayRoot& root = this->Roots.back();
+      root.T = 0.5 * (this->First + this->Last);
+      root.Tangent = this->Before != 0.0 && after != 0.0 ? (this->Before > 0) == (after > 0)
+                                                         : this->AllTangent;
+      return;
+    }
+    this->Roots.push_back({ t, tangent });
+    this->First = this->Last = t;
+    this->Before = before;
+    this->AllTangent = tangent;
+  }
+
+private:
+  std::vector<RayRoot>& Roots;
+  size_t Start;
+  double Tolerance;
+  double First = 0.0, Last = 0.0, Before = 0.0;
+  bool AllTangent = true;
+};
+
 class Solver
 {
 public:
@@ -322,6 +365,7 @@ public:
 
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
   {
+    RootCluster cluster(roots, this->Options.Tolerance);
     std::vector<double>& pool = this->W.Pool;
     std::vector<Piece>& stack = this->W.Stack;
     stack.clear();
@@ -347,11 +391,11 @@ public:
       {
         if (change)
         {
-          this->Add(roots, { this->Refine(p.A, p.B, va, vb), false });
+          cluster.Add(this->Refine(p.A, p.B, va, vb), false, va, vb);
         }
         else if (va == 0.0 || vb == 0.0)
         {
-          this->Add(roots, { va == 0.0 ? p.A : p.B, false });
+          cluster.Add(va == 0.0 ? p.A : p.B, false, va, vb);
         }
         if (!this->Options.AllRoots && !roots.empty())
         {
@@ -363,7 +407,7 @@ public:
       {
         // F may vanish here and is not provably monotone: a root (tangent without a
         // sign change).
-        this->Add(roots, { 0.5 * (p.A + p.B), !change });
+        cluster.Add(0.5 * (p.A + p.B), !change, va, vb);
         if (!this->Options.AllRoots)
         {
           return;
@@ -388,17 +432,6 @@ public:
   }
 
 private:
-  // Adjacent tiny pieces around one root report it once.
-  void Add(std::vector<RayRoot>& roots, const RayRoot& root) const
-  {
-    if (!roots.empty() && root.T - roots.back().T <= 2.0 * this->Options.Tolerance)
-    {
-      roots.back().Tangent = roots.back().Tangent && root.Tangent;
-      return;
-    }
-    roots.push_back(root);
-  }
-
   const double* Coefficients;
   const int* Counts;
   int N;
@@ -662,14 +695,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     derivative = dv;
     return v - rs;
   };
-  auto add = [&](const RayRoot& root) {
-    if (!roots.empty() && root.T - roots.back().T <= 2.0 * options.Tolerance)
-    {
-      roots.back().Tangent = roots.back().Tangent && root.Tangent;
-      return;
-    }
-    roots.push_back(root);
-  };
+  RootCluster cluster(roots, options.Tolerance);
   stack.clear();
   stack.push_back({ t0, t1, 0, 0 });
   while (!stack.empty())
@@ -730,13 +756,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
             break;
           }
         }
-        add({ NewtonRoot(phid, p.A, p.B, va, options.Tolerance,
-                p.A + start * (p.B - p.A)),
-          false });
+        cluster.Add(
+          NewtonRoot(phid, p.A, p.B, va, options.Tolerance, p.A + start * (p.B - p.A)), false,
+          va, vb);
       }
       else if (va == 0.0 || vb == 0.0)
       {
-        add({ va == 0.0 ? p.A : p.B, false });
+        cluster.Add(va == 0.0 ? p.A : p.B, false, va, vb);
       }
       if (!options.AllRoots && !roots.empty())
       {
@@ -746,7 +772,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     if (p.B - p.A <= options.Tolerance || p.Depth >= options.MaximumDepth)
     {
-      add({ 0.5 * (p.A + p.B), !change });
+      cluster.Add(0.5 * (p.A + p.B), !change, va, vb);
       if (!options.AllRoots)
       {
         return true;

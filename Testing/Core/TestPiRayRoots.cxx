@@ -101,6 +101,29 @@ TEST(RayRoots, TangentRootIsFlagged)
   EXPECT_TRUE(Roots({ Along(Sphere(0, 0, 0, 1), miss, d) }, 0.0, 0, 6).empty());
 }
 
+TEST(RayRoots, DoubleRootIsOneTangentHit)
+{
+  // Crossed unit cylinders with r = 1 along their common axis: F = (t² − 1)² − 1 =
+  // t²(t² − 2) touches 0 at t = 0, where |F| stays within the rounding slack over
+  // thousands of tolerance-wide pieces, and crosses it at √2: two roots, the first
+  // tangent (each tiny piece used to report its own root: about 8000 of them).
+  const std::vector<std::vector<double>> f = { { -1, 0, 1 }, { -1, 0, 1 } };
+  const auto roots = Roots(f, 1.0, -1, 2);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_TRUE(roots[0].Tangent);
+  EXPECT_NEAR(roots[0].T, 0.0, 1e-4);
+  EXPECT_FALSE(roots[1].Tangent);
+  EXPECT_NEAR(roots[1].T, std::sqrt(2.0), 1e-9);
+  // The same on the general path (more than 48 degrees: 24 more factors equal to 1).
+  std::vector<std::vector<double>> many = f;
+  many.resize(26, { 1, 0, 1e-300 });
+  const auto general = Roots(many, 1.0, -1, 2);
+  ASSERT_EQ(general.size(), 2u);
+  EXPECT_TRUE(general[0].Tangent);
+  EXPECT_NEAR(general[0].T, 0.0, 1e-4);
+  EXPECT_NEAR(general[1].T, std::sqrt(2.0), 1e-9);
+}
+
 TEST(RayRoots, BlendedSpheresAgreeWithABruteForceScan)
 {
   // The paper's two spheres at d = 0.9, r = 0.25, on random rays: every sign change of a
