@@ -92,6 +92,29 @@ void Polynomial3::Summarize()
     this->Scaled3[3 * n + 1] = t.Coefficient * t.J;
     this->Scaled3[3 * n + 2] = t.Coefficient * t.K;
   }
+  for (int a = 0; a < 3; ++a)
+  {
+    // Counting sort of the terms by their power of variable a (stable).
+    const int lo = a == 0 ? 1 : 0, hi = a == 2 ? 1 : 2;
+    std::vector<int>& start = this->AxisStart[a];
+    start.assign(static_cast<size_t>(this->AxisDegree[a]) + 2, 0);
+    for (const auto& t : this->Terms)
+    {
+      const int e[3] = { t.I, t.J, t.K };
+      ++start[e[a] + 1];
+    }
+    for (size_t m = 1; m < start.size(); ++m)
+    {
+      start[m] += start[m - 1];
+    }
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    this->ByAxis[a].resize(this->Terms.size());
+    for (const auto& t : this->Terms)
+    {
+      const int e[3] = { t.I, t.J, t.K };
+      this->ByAxis[a][fill[e[a]]++] = { t.Coefficient, e[lo], e[hi] };
+    }
+  }
   std::fill(this->Q, this->Q + 10, 0.0);
   if (this->Quadric)
   {
@@ -269,6 +292,19 @@ void Polynomial3::PowerTables(const double p[3], double* px, double* py, double*
   Powers(p[2], n, pz);
 }
 
+template <bool Inner>
+double Polynomial3::AxisSum(int a, int m, const double* lo, const double* hi) const
+{
+  const AxisTerm* t = this->ByAxis[a].data();
+  const int end = this->AxisStart[a][m + 1];
+  double sum = 0.0;
+  for (int k = this->AxisStart[a][m]; k < end; ++k)
+  {
+    sum += Inner ? t[k].C * (lo[t[k].Lo] * hi[t[k].Hi]) : t[k].C * lo[t[k].Lo] * hi[t[k].Hi];
+  }
+  return sum;
+}
+
 double Polynomial3::Evaluate(const double p[3]) const
 {
   if (this->Quadric)
@@ -352,38 +388,41 @@ void Polynomial3::EvaluateStar(
 {
   if (this->Quadric)
   {
+    // Along an axis a quadric is its exact second-order Taylor polynomial:
+    // P(p ± h·e_a) = P(p) ± h·∂_a P + h²·Q_aa.
     const double* q = this->Q;
     const double x = p[0], y = p[1], z = p[2];
-    values[0] = QuadricValue(q, x, y, z);
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int side = 0; side < 2; ++side)
-      {
-        double r[3] = { x, y, z };
-        r[a] += side ? step[a] : -step[a];
-        values[1 + 2 * a + side] = QuadricValue(q, r[0], r[1], r[2]);
-      }
-    }
+    const double v = QuadricValue(q, x, y, z);
+    values[0] = v;
     g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
     g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
     g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double h = step[a];
+      const double curvature = h * h * q[4 + a];
+      values[1 + 2 * a] = (v + curvature) - h * g[a];
+      values[2 + 2 * a] = (v + curvature) + h * g[a];
+    }
     return;
   }
   const int n = std::max(this->Degree, 0);
   double px[MaxDegree + 1], py[MaxDegree + 1], pz[MaxDegree + 1];
   this->PowerTables(p, px, py, pz);
-  // sum[a][m]: the terms with power m of variable a, without that variable's power.
+  // sum[a][m]: the terms with power m of variable a, without that variable's power
+  // ((c·lo)·hi, the two other variables in axis order, each group in term order).
   double sum[3][MaxDegree + 1];
+  const double* powers[3] = { px, py, pz };
   for (int a = 0; a < 3; ++a)
   {
-    std::fill(sum[a], sum[a] + n + 1, 0.0);
-  }
-  for (const auto& t : this->Terms)
-  {
-    const double c = t.Coefficient;
-    sum[0][t.I] += c * py[t.J] * pz[t.K];
-    sum[1][t.J] += c * px[t.I] * pz[t.K];
-    sum[2][t.K] += c * px[t.I] * py[t.J];
+    const double* lo = powers[a == 0 ? 1 : 0];
+    const double* hi = powers[a == 2 ? 1 : 2];
+    const int top = this->Terms.empty() ? -1 : this->AxisDegree[a];
+    for (int m = 0; m <= top; ++m)
+    {
+      sum[a][m] = this->AxisSum<false>(a, m, lo, hi);
+    }
+    std::fill(sum[a] + top + 1, sum[a] + n + 1, 0.0);
   }
   for (int a = 0; a < 3; ++a)
   {
@@ -652,15 +691,15 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
   {
     return;
   }
-  // Powers of the two fixed variables only.
-  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-  double pu[MaxDegree + 1], pw[MaxDegree + 1];
-  Powers(q[u], this->AxisDegree[u], pu);
-  Powers(q[w], this->AxisDegree[w], pw);
-  for (const auto& t : this->Terms)
+  // Powers of the two fixed variables only; each coefficient c·(lo·hi) summed in
+  // term order (the product of the two powers commutes: the same bits in either order).
+  const int lo = axis == 0 ? 1 : 0, hi = axis == 2 ? 1 : 2;
+  double plo[MaxDegree + 1], phi[MaxDegree + 1];
+  Powers(q[lo], this->AxisDegree[lo], plo);
+  Powers(q[hi], this->AxisDegree[hi], phi);
+  for (int m = 0; m <= n; ++m)
   {
-    const int e[3] = { t.I, t.J, t.K };
-    out[e[axis]] += t.Coefficient * (pu[e[u]] * pw[e[w]]);
+    out[m] = this->AxisSum<true>(axis, m, plo, phi);
   }
 }
 

@@ -137,6 +137,21 @@ private:
   // gradient needs no branch or conversion per term.
   std::vector<double> Scaled3;
   double Q[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+  // Per axis a, the terms grouped by their power of that variable (stable: term order
+  // within a group), with the powers of the two other variables, lower axis first:
+  // the group of power m is ByAxis[a][AxisStart[a][m] .. AxisStart[a][m + 1]). Each
+  // partial sum of RestrictToAxis and EvaluateStar then accumulates in a register
+  // instead of a scattered store and reload per term (Summarize).
+  struct AxisTerm
+  {
+    double C;
+    int Lo, Hi;
+  };
+  std::vector<AxisTerm> ByAxis[3];
+  std::vector<int> AxisStart[3];
+  // Σ over the group of power m on axis a of (C·lo^Lo)·hi^Hi, or with `inner` C·(lo^Lo·hi^Hi).
+  template <bool Inner>
+  double AxisSum(int a, int m, const double* lo, const double* hi) const;
 };
 
 /// x^n for n >= 0 by repeated squaring (exact for small n, much cheaper than std::pow).
