@@ -289,9 +289,7 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
 
 // Cloned for AVX2 where the CPU has it (4 points per instruction instead of 2; no FMA,
 // so the values keep their bits), chosen at load time.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+PISURF_AVX2_CLONES
 void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0, int n,
   const double origin[3], const double step[3], double* values) const
 {
