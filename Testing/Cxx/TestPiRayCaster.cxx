@@ -8,10 +8,13 @@
 #include "vtkPiSurface.h"
 #include "vtkPiSurfaceSource.h"
 
+#include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkDirectory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 
 #include <array>
 
@@ -328,6 +331,77 @@ int TestPiRayCaster(int, char*[])
     PI_CHECK(SameHitsWithAndWithoutSkipping(model, 75, 61, file) > 100);
   }
   PI_CHECK(models >= 20);
+
+  // CAMERA mode casts the rays a VTK renderer of the image's size casts through its
+  // pixel centres: each hit lies on the line vtkRenderer::DisplayToWorld gives for
+  // display point (i + ½, j + ½) at depths 0 and 1, for a perspective and a parallel
+  // camera looking at the cup from an oblique direction, in a non-square image.
+  {
+    vtkNew<vtkPiSurface> cup;
+    PI_CHECK(cup->LoadModel(pitest::ModelPath("cup_a1.0.pisurf").c_str()));
+    for (const bool parallel : { false, true })
+    {
+      const int w = 97, h = 61;
+      vtkNew<vtkPiRayCaster> camera;
+      camera->SetPiSurface(cup);
+      camera->SetViewMode(vtkPiRayCaster::CAMERA);
+      camera->SetResolution(w, h);
+      camera->SetCameraPosition(4.0, -6.5, 3.0);
+      camera->SetCameraFocalPoint(0.4, 0.2, -1.2);
+      camera->SetCameraViewUp(0.1, 0.2, 1.0);
+      camera->SetViewAngle(27.0);
+      camera->SetParallelProjection(parallel);
+      camera->SetParallelScale(2.1);
+      camera->Update();
+      vtkPolyData* out = camera->GetOutput();
+      vtkNew<vtkRenderWindow> window;
+      window->SetSize(w, h);
+      window->OffScreenRenderingOn();
+      vtkNew<vtkRenderer> renderer;
+      window->AddRenderer(renderer);
+      vtkCamera* c = renderer->GetActiveCamera();
+      c->SetPosition(4.0, -6.5, 3.0);
+      c->SetFocalPoint(0.4, 0.2, -1.2);
+      c->SetViewUp(0.1, 0.2, 1.0);
+      c->SetViewAngle(27.0);
+      c->SetParallelProjection(parallel);
+      c->SetParallelScale(2.1);
+      c->SetClippingRange(0.5, 50.0);
+      vtkDataArray* pixel = Array(out, "PixelIndex");
+      double worst = 0.0;
+      for (vtkIdType k = 0; pixel && k < out->GetNumberOfPoints(); ++k)
+      {
+        double ends[2][3];
+        for (int z = 0; z < 2; ++z)
+        {
+          renderer->SetDisplayPoint(pixel->GetComponent(k, 0) + 0.5, pixel->GetComponent(k, 1) + 0.5, z);
+          renderer->DisplayToWorld();
+          double world[4];
+          renderer->GetWorldPoint(world);
+          for (int a = 0; a < 3; ++a)
+          {
+            ends[z][a] = world[a] / world[3];
+          }
+        }
+        double p[3], u[3], v[3];
+        out->GetPoint(k, p);
+        for (int a = 0; a < 3; ++a)
+        {
+          u[a] = ends[1][a] - ends[0][a];
+          v[a] = p[a] - ends[0][a];
+        }
+        // |v × u| / |u|: the distance from the hit to the renderer's pixel ray.
+        const double cx = v[1] * u[2] - v[2] * u[1], cy = v[2] * u[0] - v[0] * u[2],
+                     cz = v[0] * u[1] - v[1] * u[0];
+        worst = std::max(worst,
+          std::sqrt(cx * cx + cy * cy + cz * cz) / std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+      }
+      std::cout << (parallel ? "parallel" : "perspective") << " camera: " << out->GetNumberOfPoints()
+                << " hits, largest distance to VTK's pixel ray " << worst << "\n";
+      PI_CHECK(out->GetNumberOfPoints() > 1000);
+      PI_CHECK(worst < 1e-6);
+    }
+  }
 
   // Bad settings.
   caster->SetPiSurface(sphere);
