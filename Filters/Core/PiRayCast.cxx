@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiRayCast.h"
 
+#include "PiFloat.h"
 #include "PiProduct.h"
 
 #include <algorithm>
@@ -161,11 +162,12 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
 }
 
 // Whether |∇F|·probe is at most `tolerance` times the largest of the six probe values
-// |F| = |mantissa|·2^exponent, compared in logarithms (no overflow). The largest |F| is
-// found on the scaled values (exponent first, then mantissa: the same order as their
-// logarithms), so only one logarithm is taken.
-static bool ProbesSayZeroGradient(
-  double logGradient, double probe, double tolerance, const double* mantissa, const long* exponent)
+// |F| = |mantissa|·2^exponent. The largest |F| is found on the scaled values (exponent
+// first, then mantissa: the same order as their magnitudes). Where |∇F| (`gradient`),
+// that largest value and both products are normal doubles they are compared directly;
+// otherwise in logarithms (no overflow).
+static bool ProbesSayZeroGradient(double gradient, double logGradient, double probe,
+  double tolerance, const double* mantissa, const long* exponent)
 {
   double bestMantissa = 0.0;
   long bestExponent = 0;
@@ -181,6 +183,16 @@ static bool ProbesSayZeroGradient(
       bestExponent = e;
     }
   }
+  if (bestMantissa != 0.0 && bestExponent > -900 && bestExponent < 900 &&
+    std::isnormal(gradient))
+  {
+    const double lhs = gradient * probe;
+    const double rhs = tolerance * pisurf::Ldexp(bestMantissa, static_cast<int>(bestExponent));
+    if (std::isnormal(lhs) && std::isnormal(rhs))
+    {
+      return lhs <= rhs;
+    }
+  }
   const double logProbe = bestMantissa == 0.0
     ? -std::numeric_limits<double>::infinity()
     : std::log(bestMantissa) + static_cast<double>(bestExponent) * std::log(2.0);
@@ -194,7 +206,7 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
   long exponent[6];
   this->Kernel.EvaluateVertexStar(
     p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
-  return ProbesSayZeroGradient(logGradient, probe, tolerance, mantissa, exponent);
+  return ProbesSayZeroGradient(gradientNorm, logGradient, probe, tolerance, mantissa, exponent);
 }
 
 }
