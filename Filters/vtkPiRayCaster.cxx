@@ -135,40 +135,56 @@ struct TileOctree
 {
   const pisurf::ProductKernel* Kernel;
   const View* V;
-  int Axis, U, W;           // the world axes of the depth, of i and of j
-  double PixelSize;         // the larger of the pixel's two world sizes
+  // Axis views: the world axes of the depth, of i and of j (their boxes' octants are
+  // their children). Camera views: Axis = −1 (each child's box is classified itself).
+  int Axis, U, W;
+  double PixelSize;         // the larger of the pixel's two world sizes (at depth 1)
   int RowBegin, RowEnd;     // the image rows this piece casts
   // The tile's undecided leaves as (column in the tile, range), in visiting order.
   std::vector<std::pair<int, DepthRange>> Leaves;
   int TileI = 0, TileJ = 0;
 
-  void Box(int i0, int j0, int size, double ta, double tb, double box[6]) const
+  // The point of pixel (i, j)'s ray at depth s: O + i·U + j·V + s·D (axis and parallel
+  // views, s = t) or O + s·(D + i·U + j·V) (perspective: s is the depth along the view
+  // direction, t = s·|D + i·U + j·V|).
+  void PointAt(int i, int j, double s, double x[3]) const
   {
     const View& v = *this->V;
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] = v.Perspective ? v.O[k] + s * (v.D[k] + i * v.U[k] + j * v.V[k])
+                           : (v.O[k] + i * v.U[k] + j * v.V[k]) + s * v.D[k];
+    }
+  }
+
+  // The axis-aligned box of the node's rays: the corner rays at both depths (the rays
+  // of a square of pixels between two depths fill the convex hull of those 8 points).
+  void Box(int i0, int j0, int size, double ta, double tb, double box[6]) const
+  {
     for (int k = 0; k < 3; ++k)
     {
       box[2 * k] = VTK_DOUBLE_MAX;
       box[2 * k + 1] = -VTK_DOUBLE_MAX;
     }
-    // (the corner rays' start and end points: the same arithmetic as the rays' own)
     for (const int i : { i0, i0 + size - 1 })
     {
       for (const int j : { j0, j0 + size - 1 })
       {
         for (const double t : { ta, tb })
         {
+          double x[3];
+          this->PointAt(i, j, t, x);
           for (int k = 0; k < 3; ++k)
           {
-            const double x = (v.O[k] + i * v.U[k] + j * v.V[k]) + t * v.D[k];
-            box[2 * k] = std::min(box[2 * k], x);
-            box[2 * k + 1] = std::max(box[2 * k + 1], x);
+            box[2 * k] = std::min(box[2 * k], x[k]);
+            box[2 * k + 1] = std::max(box[2 * k + 1], x[k]);
           }
         }
       }
     }
   }
 
-  void Visit(int i0, int j0, int size, double ta, double tb)
+  void Visit(int i0, int j0, int size, double ta, double tb, int level = 0)
   {
     const View& v = *this->V;
     if (i0 >= v.W || j0 >= v.H || j0 + size <= this->RowBegin || j0 >= this->RowEnd)
@@ -177,7 +193,10 @@ struct TileOctree
     }
     double box[6];
     this->Box(i0, j0, size, ta, tb, box);
-    if (tb - ta > size * this->PixelSize)
+    // (a perspective node is as wide as its far end; at most 16 depth halvings, for a
+    // frustum whose near end is at the eye)
+    const double width = size * this->PixelSize * (v.Perspective ? tb : 1.0);
+    if (tb - ta > width && level < 16)
     {
       // Deeper than wide: halve the depth first (front half first).
       if (this->Kernel->ClassifyBox(box) != 0)
@@ -185,15 +204,39 @@ struct TileOctree
         return;
       }
       const double mid = 0.5 * (ta + tb);
-      this->Visit(i0, j0, size, ta, mid);
-      this->Visit(i0, j0, size, mid, tb);
+      this->Visit(i0, j0, size, ta, mid, level + 1);
+      this->Visit(i0, j0, size, mid, tb, level + 1);
+      return;
+    }
+    const int half = size / 2;
+    const double mid = 0.5 * (ta + tb);
+    if (this->Axis < 0)
+    {
+      // A camera view: the node's own box, then its eight children's.
+      if (this->Kernel->ClassifyBox(box) != 0)
+      {
+        return;
+      }
+      if (size <= LeafSize)
+      {
+        this->AddLeaf(i0, j0, ta, tb);
+        return;
+      }
+      for (int front = 1; front >= 0; --front)
+      {
+        for (int jh = 0; jh < 2; ++jh)
+        {
+          for (int ih = 0; ih < 2; ++ih)
+          {
+            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
+          }
+        }
+      }
       return;
     }
     if (size <= LeafSize)
     {
-      const int column = ((j0 - this->TileJ) / LeafSize) * (TileSize / LeafSize) +
-        (i0 - this->TileI) / LeafSize;
-      this->Leaves.push_back({ column, { ta, tb } });
+      this->AddLeaf(i0, j0, ta, tb);
       return;
     }
     int octants[8];
@@ -201,8 +244,6 @@ struct TileOctree
     {
       return;
     }
-    const int half = size / 2;
-    const double mid = 0.5 * (ta + tb);
     // Octant bit a: the upper half of world axis a. i and j grow with their axes; t
     // grows with the depth axis when the view looks along +axis.
     const bool depthUp = v.D[this->Axis] > 0;
@@ -216,11 +257,18 @@ struct TileOctree
           const int o = (ih << this->U) | (jh << this->W) | (depthBit << this->Axis);
           if (octants[o] == 0)
           {
-            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb);
+            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
           }
         }
       }
     }
+  }
+
+  void AddLeaf(int i0, int j0, double ta, double tb)
+  {
+    const int column =
+      ((j0 - this->TileJ) / LeafSize) * (TileSize / LeafSize) + (i0 - this->TileI) / LeafSize;
+    this->Leaves.push_back({ column, { ta, tb } });
   }
 };
 
@@ -267,11 +315,26 @@ struct CastRows
         d[k] = v.D[k];
       }
     }
-    vtkMath::Normalize(d);
+    // (a perspective ray's depth s along the view direction is t/|d|)
+    const double norm = vtkMath::Normalize(d);
     if (!v.Axis && !Clip(o, d, this->Bounds, t0, t1))
     {
       return;
     }
+    const ViewSkipping& skipping = (*this->Skipping)[viewIndex];
+    const DepthRange* range = nullptr;
+    const DepthRange* rangeEnd = nullptr;
+    if (skipping.Active)
+    {
+      const int column = (j / LeafSize) * skipping.Columns + i / LeafSize;
+      range = skipping.Ranges.data() + skipping.Offsets[column];
+      rangeEnd = skipping.Ranges.data() + skipping.Offsets[column + 1];
+      if (range == rangeEnd)
+      {
+        return; // no root for any ray of the column
+      }
+    }
+    const double depthToT = v.Perspective ? norm : 1.0;
     std::vector<pisurf::RayRoot>& roots = buffers.Roots;
     pisurf::RayRootOptions options;
     options.Tolerance = this->Tolerance;
@@ -280,19 +343,6 @@ struct CastRows
     {
       // Orthographic: the factors restricted from the row's coefficients, in the grid's
       // parameter s = t − h (t from the view plane).
-      const ViewSkipping& skipping = (*this->Skipping)[viewIndex];
-      const DepthRange* range = nullptr;
-      const DepthRange* rangeEnd = nullptr;
-      if (skipping.Active)
-      {
-        const int column = (j / LeafSize) * skipping.Columns + i / LeafSize;
-        range = skipping.Ranges.data() + skipping.Offsets[column];
-        rangeEnd = skipping.Ranges.data() + skipping.Offsets[column + 1];
-        if (range == rangeEnd)
-        {
-          return; // no root for any ray of the column
-        }
-      }
       std::vector<double>& coefficients = buffers.Coefficients;
       coefficients.resize(this->Caster->GetLineCoefficientCount());
       grid->Restrict(buffers.Row, i, coefficients.data());
@@ -333,18 +383,39 @@ struct CastRows
       }
       return;
     }
-    // Restrict about the entry point: t' = t − t0.
-    const double start[3] = { o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2] };
-    this->Caster->Cast(start, d, t1 - t0, options, roots);
+    // Restricted about the start of each segment searched, a: t' = t − a.
     int index = 0;
-    for (const pisurf::RayRoot& r : roots)
-    {
-      Hit h{ i, j, viewIndex, index++, r.T + (v.Axis ? 0.0 : t0), r.Tangent, {} };
-      for (int k = 0; k < 3; ++k)
+    auto search = [&](double a, double b) {
+      const double start[3] = { o[0] + a * d[0], o[1] + a * d[1], o[2] + a * d[2] };
+      this->Caster->Cast(start, d, b - a, options, roots);
+      for (const pisurf::RayRoot& r : roots)
       {
-        h.P[k] = start[k] + r.T * d[k];
+        Hit h{ i, j, viewIndex, index++, a + r.T, r.Tangent, {} };
+        for (int k = 0; k < 3; ++k)
+        {
+          h.P[k] = start[k] + r.T * d[k];
+        }
+        out.push_back(h);
       }
-      out.push_back(h);
+    };
+    if (!range)
+    {
+      search(t0, t1);
+      return;
+    }
+    for (; range != rangeEnd; ++range)
+    {
+      const double a = std::max(t0, range->Start * depthToT);
+      const double b = std::min(t1, range->End * depthToT);
+      if (!(a < b))
+      {
+        continue;
+      }
+      search(a, b);
+      if (!this->AllHits && !roots.empty())
+      {
+        return;
+      }
     }
   }
 
@@ -694,16 +765,64 @@ int vtkPiRayCaster::RequestData(
       grids[k] = std::make_unique<pisurf::RayGrid>(*kernel, v.O, v.U, v.V, d, v.W, v.H, length);
     }
   }
-  // Per axis view, the depth ranges of each leaf column that may hold roots.
+  // Per view, the depth ranges of each leaf column that may hold roots.
   std::vector<ViewSkipping> skipping(views.size());
   if (kernel->IsPolynomial() && this->SkipEmptySpace)
   {
     for (size_t k = 0; k < views.size(); ++k)
     {
       const View& v = views[k];
-      if (!v.Axis)
+      if (!v.Axis && !v.Perspective)
       {
+        // A parallel camera: its rays already restrict cheaply from the view's grid and
+        // the boxes of its oblique tiles are loose; the octree cost about what it saved.
         continue;
+      }
+      // The depths [s0, s1] the rays can meet the bounds at: the whole segment of an
+      // axis view; for a camera view, the bounds' corners along the view direction
+      // (perspective: D + i·U + j·V has depth 1 along it).
+      double s0 = 0.0, s1 = v.Length;
+      int axis = -1;
+      if (v.Axis)
+      {
+        axis = 0;
+        while (axis < 2 && v.D[axis] == 0.0)
+        {
+          ++axis;
+        }
+      }
+      else
+      {
+        double dir[3] = { v.D[0], v.D[1], v.D[2] };
+        if (v.Perspective)
+        {
+          // The view direction: D without its parts along U and V (both orthogonal to it).
+          for (const double* e : { v.U, v.V })
+          {
+            const double scale = vtkMath::Dot(dir, e) / vtkMath::Dot(e, e);
+            for (int c = 0; c < 3; ++c)
+            {
+              dir[c] -= scale * e[c];
+            }
+          }
+        }
+        s0 = VTK_DOUBLE_MAX;
+        s1 = -VTK_DOUBLE_MAX;
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          double depth = 0.0;
+          for (int c = 0; c < 3; ++c)
+          {
+            depth += (b[2 * c + ((corner >> c) & 1)] - v.O[c]) * dir[c];
+          }
+          s0 = std::min(s0, depth);
+          s1 = std::max(s1, depth);
+        }
+        s0 = std::max(s0, 0.0);
+        if (!(s1 > s0))
+        {
+          continue; // the bounds are behind the camera: every ray misses them
+        }
       }
       const int tw = (v.W + TileSize - 1) / TileSize;
       const int tileRowBegin = rowBegin / TileSize, tileRowEnd = (rowEnd - 1) / TileSize + 1;
@@ -712,11 +831,6 @@ int vtkPiRayCaster::RequestData(
       // Per tile, its columns' ranges (then gathered into the view's CSR).
       std::vector<std::vector<int>> tileOffsets(tileCount);
       std::vector<std::vector<DepthRange>> tileRanges(tileCount);
-      int axis = 0;
-      while (axis < 2 && v.D[axis] == 0.0)
-      {
-        ++axis;
-      }
       vtkSMPTools::For(0, tileCount, [&](vtkIdType begin, vtkIdType end) {
         TileOctree octree;
         octree.Kernel = kernel.get();
@@ -724,7 +838,7 @@ int vtkPiRayCaster::RequestData(
         octree.Axis = axis;
         octree.U = (axis + 1) % 3;
         octree.W = (axis + 2) % 3;
-        octree.PixelSize = std::max(std::fabs(v.U[octree.U]), std::fabs(v.V[octree.W]));
+        octree.PixelSize = std::max(vtkMath::Norm(v.U), vtkMath::Norm(v.V));
         octree.RowBegin = rowBegin;
         octree.RowEnd = rowEnd;
         for (vtkIdType id = begin; id < end; ++id)
@@ -732,7 +846,7 @@ int vtkPiRayCaster::RequestData(
           octree.TileI = static_cast<int>(id % tw) * TileSize;
           octree.TileJ = (tileRowBegin + static_cast<int>(id / tw)) * TileSize;
           octree.Leaves.clear();
-          octree.Visit(octree.TileI, octree.TileJ, TileSize, 0.0, v.Length);
+          octree.Visit(octree.TileI, octree.TileJ, TileSize, s0, s1);
           // Counting sort by column (stable: each column keeps increasing depth), merging
           // ranges that touch.
           std::vector<int>& offsets = tileOffsets[id];

@@ -19,6 +19,7 @@
 #include <array>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <tuple>
@@ -34,7 +35,8 @@ vtkDataArray* Array(vtkPolyData* p, const char* name)
 // view, pixel and hit index), depths within 1e-9 of the model size (both are roots to
 // 1e-10 of it), the same Tangent and Singular flags. Returns the number of hits, or −1
 // (with a message) on a difference.
-long SameHitsWithAndWithoutSkipping(vtkPiSurface* model, int w, int h, const std::string& name)
+long SameHitsWithAndWithoutSkipping(vtkPiSurface* model, int w, int h, const std::string& name,
+  const std::function<void(vtkPiRayCaster*)>& view = nullptr)
 {
   using Key = std::tuple<int, int, int, int>;
   std::map<Key, std::array<double, 3>> hits[2];
@@ -43,6 +45,10 @@ long SameHitsWithAndWithoutSkipping(vtkPiSurface* model, int w, int h, const std
     vtkNew<vtkPiRayCaster> caster;
     caster->SetPiSurface(model);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
+    if (view)
+    {
+      view(caster);
+    }
     caster->SetResolution(w, h);
     caster->AllHitsOn();
     caster->SetSkipEmptySpace(skip == 1);
@@ -198,6 +204,28 @@ int TestPiRayCaster(int, char*[])
     const long found = SameHitsWithAndWithoutSkipping(thin, 150, 130, "thin features");
     std::cout << "thin features, six views, all hits: " << found << " hits with and without skipping\n";
     PI_CHECK(found > 1000);
+    // Camera views (perspective and parallel, oblique), from outside the bounds and from
+    // inside them (the frustum's near end at the eye).
+    for (const bool parallel : { false, true })
+    {
+      for (const bool inside : { false, true })
+      {
+        const std::string name = std::string("thin features, ") +
+          (parallel ? "parallel" : "perspective") + " camera" + (inside ? " inside" : "");
+        const long camera = SameHitsWithAndWithoutSkipping(thin, 121, 97, name,
+          [&](vtkPiRayCaster* c) {
+            c->SetViewMode(vtkPiRayCaster::CAMERA);
+            c->SetCameraPosition(inside ? 0.1 : 2.5, inside ? -0.2 : -3.0, inside ? 0.05 : 1.7);
+            c->SetCameraFocalPoint(0.3, 0.2, -0.1);
+            c->SetCameraViewUp(0.1, 0.3, 1.0);
+            c->SetViewAngle(inside ? 100.0 : 40.0);
+            c->SetParallelProjection(parallel);
+            c->SetParallelScale(1.2);
+          });
+        std::cout << name << ", all hits: " << camera << " hits with and without skipping\n";
+        PI_CHECK(camera > 50);
+      }
+    }
   }
 
   // Crossed cylinders with r = 0 seen along −Z: their intersection curves project onto
@@ -327,8 +355,17 @@ int TestPiRayCaster(int, char*[])
                 << worstHit << " (size " << size << ")\n";
       ++failures;
     }
-    // Empty-space skipping finds the same roots (an odd image size leaves partial tiles).
+    // Empty-space skipping finds the same roots (an odd image size leaves partial tiles),
+    // in the six axis views and in an oblique perspective camera.
     PI_CHECK(SameHitsWithAndWithoutSkipping(model, 75, 61, file) > 100);
+    const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+    PI_CHECK(SameHitsWithAndWithoutSkipping(model, 67, 53, file + ", camera", [&](vtkPiRayCaster* c) {
+      c->SetViewMode(vtkPiRayCaster::CAMERA);
+      c->SetCameraPosition(centre[0] + 0.9 * size, centre[1] - 1.1 * size, centre[2] + 0.7 * size);
+      c->SetCameraFocalPoint(centre[0], centre[1], centre[2]);
+      c->SetCameraViewUp(0, 0, 1);
+      c->SetViewAngle(35.0);
+    }) > 100);
   }
   PI_CHECK(models >= 20);
 
