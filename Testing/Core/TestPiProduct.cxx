@@ -1399,7 +1399,7 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
   const ProductKernel kernel(fs, 10.0);
   const double bounds[6] = { -2.2, 3.4, -2.1, 2.1, -2.55, 0.25 };
   const int n = 32;
-  int decided = 0, octantsDecided = 0;
+  int decided = 0, octantsDecided = 0, allDecided = 0;
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
@@ -1412,10 +1412,26 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
           box[2 * a] = bounds[2 * a] + idx[a] * w;
           box[2 * a + 1] = box[2 * a] + w;
         }
-        int octants[8];
+        int octants[8], all[8];
         const int sign = kernel.ClassifyBoxAndOctants(box, octants);
         EXPECT_EQ(sign, kernel.ClassifyBox(box));
         decided += sign != 0;
+        // Every octant (the ray caster's octree): the same signs up to the first
+        // undecided octant, then the rest too (each checked against F below).
+        EXPECT_EQ(kernel.ClassifyBoxAndOctants(box, all, true), sign);
+        if (sign == 0)
+        {
+          bool prefix = true;
+          for (int o = 0; o < 8; ++o)
+          {
+            allDecided += all[o] != 0;
+            if (prefix)
+            {
+              EXPECT_EQ(all[o], octants[o]);
+              prefix = octants[o] != 0;
+            }
+          }
+        }
         for (int q = 0; q < 27; ++q)
         {
           const int t[3] = { q % 3, (q / 3) % 3, q / 9 };
@@ -1432,6 +1448,10 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
           {
             EXPECT_EQ(expected > 0, F > 0) << p[0] << " " << p[1] << " " << p[2];
           }
+          if (sign == 0 && all[o] != 0)
+          {
+            EXPECT_EQ(all[o] > 0, F > 0) << p[0] << " " << p[1] << " " << p[2];
+          }
           // The centre plane belongs to both halves: the lower octant must agree too.
           if (sign == 0 && (t[0] == 1 || t[1] == 1 || t[2] == 1))
           {
@@ -1439,6 +1459,10 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
             if (octants[lower] != 0)
             {
               EXPECT_EQ(octants[lower] > 0, F > 0);
+            }
+            if (all[lower] != 0)
+            {
+              EXPECT_EQ(all[lower] > 0, F > 0);
             }
           }
         }
@@ -1452,6 +1476,9 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
       }
   EXPECT_GE(decided, 26500);
   EXPECT_GT(octantsDecided, 0);
+  // Past the first undecided octant the rest are still worth deciding (the ray caster's
+  // octree skips them): the all-octants mode decides more of them.
+  EXPECT_GT(allDecided, octantsDecided);
 
   PrimitiveSpec leg;
   leg.Type = PrimitiveType::Polynomial;
