@@ -98,22 +98,24 @@ bool Clip(const double o[3], const double d[3], const double b[6], double& t0, d
   return t0 < t1;
 }
 
-// Empty-space skipping for axis views, an octree over each view's rays: a node is a
-// square of 2^k × 2^k pixels and a depth range, whose rays fill an axis-aligned box.
-// Where the kernel's enclosure (ProductKernel::ClassifyBox) says F > 0 or F < 0 on the
-// whole box, no ray of the node has a root in that depth range. Tiles of TileSize
-// pixels are first cut along the depth into boxes about as deep as they are wide; an
-// undecided box is split into its eight octants (two pixel halves per image axis, two
-// depth halves), classified at once from one Taylor expansion per factor
-// (ClassifyBoxAndOctants), down to squares of LeafSize pixels (a leaf is an undecided
-// octant; it is not classified again). Each leaf column keeps the depth ranges of its
-// undecided leaves, merged where they touch, in increasing depth: its rays search only
-// there (the first hit stops at the first range holding a root), and a column with
-// none casts nothing. The boxes hold the rays' pixel centres (an octant's inner faces
-// lie half a pixel beyond its rays), so no root is skipped. 32-pixel tiles, 8-pixel
-// leaves and boxes as deep as wide measured best on the cup, the table and ten spheres
-// at 1024² (4-pixel leaves, or classifying the leaves themselves, cost more in
-// enclosures than they save in root finding).
+// Empty-space skipping for axis views and perspective cameras, an octree over each
+// view's rays: a node is a square of 2^k × 2^k pixels and a depth range, whose rays lie
+// in the bounding box of its corner rays at both depths. Where the kernel's enclosure
+// (ProductKernel::ClassifyBox) says F > 0 or F < 0 on the whole box, no ray of the node
+// has a root in that depth range. Tiles of TileSize pixels are first cut along the
+// depth into boxes about as deep as they are wide; an undecided box is split into eight
+// children (two pixel halves per image axis, two depth halves), down to squares of
+// LeafSize pixels. In an axis view the children are the box's octants, classified at
+// once from one Taylor expansion per factor (ClassifyBoxAndOctants), and a leaf is an
+// undecided octant, not classified again; a camera's children are classified one by
+// one (the octants of an oblique box are not their boxes). Each leaf column keeps the
+// depth ranges of its undecided leaves, merged where they touch, in increasing depth:
+// its rays search only there (the first hit stops at the first range holding a root),
+// and a column with none casts nothing. The boxes hold the rays' pixel centres (an
+// octant's inner faces lie half a pixel beyond its rays), so no root is skipped.
+// 32-pixel tiles, 8-pixel leaves and boxes as deep as wide measured best on the cup,
+// the table and ten spheres at 1024² (4-pixel leaves, or classifying an axis view's
+// leaves themselves, cost more in enclosures than they save in root finding).
 constexpr int TileSize = 32;
 constexpr int LeafSize = 8;
 
@@ -339,16 +341,23 @@ struct CastRows
     pisurf::RayRootOptions options;
     options.Tolerance = this->Tolerance;
     options.AllRoots = this->AllHits;
+    // Orthographic views: the factors restricted from the row's coefficients, in the
+    // grid's parameter s = t − h (t from the view plane).
+    std::vector<double>& coefficients = buffers.Coefficients;
+    double h = 0.0;
     if (grid)
     {
-      // Orthographic: the factors restricted from the row's coefficients, in the grid's
-      // parameter s = t − h (t from the view plane).
-      std::vector<double>& coefficients = buffers.Coefficients;
       coefficients.resize(this->Caster->GetLineCoefficientCount());
       grid->Restrict(buffers.Row, i, coefficients.data());
-      const double h = grid->GetHalfLength();
-      int index = 0;
-      auto emit = [&]() {
+      h = grid->GetHalfLength();
+    }
+    // The roots on the segment [a, b] of the ray, as hits: from the grid's restriction,
+    // or from the factors restricted about the segment's start (t' = t − a).
+    int index = 0;
+    auto search = [&](double a, double b) {
+      if (grid)
+      {
+        this->Caster->CastRestricted(coefficients.data(), a - h, b - h, options, roots);
         for (const pisurf::RayRoot& r : roots)
         {
           const double t = r.T + h;
@@ -359,43 +368,18 @@ struct CastRows
           }
           out.push_back(hit);
         }
-      };
-      if (!range)
-      {
-        this->Caster->CastRestricted(coefficients.data(), t0 - h, t1 - h, options, roots);
-        emit();
         return;
       }
-      // The column's ranges in increasing depth (no root lies between them).
-      for (; range != rangeEnd; ++range)
-      {
-        const double a = std::max(t0, range->Start), b = std::min(t1, range->End);
-        if (!(a < b))
-        {
-          continue;
-        }
-        this->Caster->CastRestricted(coefficients.data(), a - h, b - h, options, roots);
-        emit();
-        if (!this->AllHits && !roots.empty())
-        {
-          return;
-        }
-      }
-      return;
-    }
-    // Restricted about the start of each segment searched, a: t' = t − a.
-    int index = 0;
-    auto search = [&](double a, double b) {
       const double start[3] = { o[0] + a * d[0], o[1] + a * d[1], o[2] + a * d[2] };
       this->Caster->Cast(start, d, b - a, options, roots);
       for (const pisurf::RayRoot& r : roots)
       {
-        Hit h{ i, j, viewIndex, index++, a + r.T, r.Tangent, {} };
+        Hit hit{ i, j, viewIndex, index++, a + r.T, r.Tangent, {} };
         for (int k = 0; k < 3; ++k)
         {
-          h.P[k] = start[k] + r.T * d[k];
+          hit.P[k] = start[k] + r.T * d[k];
         }
-        out.push_back(h);
+        out.push_back(hit);
       }
     };
     if (!range)
@@ -403,6 +387,7 @@ struct CastRows
       search(t0, t1);
       return;
     }
+    // The column's ranges in increasing depth (no root lies between them).
     for (; range != rangeEnd; ++range)
     {
       const double a = std::max(t0, range->Start * depthToT);
@@ -894,33 +879,31 @@ int vtkPiRayCaster::RequestData(
       view.Columns = tw * (TileSize / LeafSize);
       const int columnRows = ((v.H + TileSize - 1) / TileSize) * (TileSize / LeafSize);
       view.Offsets.assign(static_cast<size_t>(view.Columns) * columnRows + 1, 0);
-      std::vector<int> counts(view.Offsets.size(), 0);
+      // The view's column of column c of tile `id`.
+      auto column = [&](int id, int c) {
+        const int ci = (id % tw) * (TileSize / LeafSize) + c % (TileSize / LeafSize);
+        const int cj = (tileRowBegin + id / tw) * (TileSize / LeafSize) + c / (TileSize / LeafSize);
+        return static_cast<size_t>(cj) * view.Columns + ci;
+      };
       for (int id = 0; id < tileCount; ++id)
       {
-        const int ti = id % tw, tj = tileRowBegin + id / tw;
         for (int c = 0; c < PerTile; ++c)
         {
-          const int ci = ti * (TileSize / LeafSize) + c % (TileSize / LeafSize);
-          const int cj = tj * (TileSize / LeafSize) + c / (TileSize / LeafSize);
-          counts[static_cast<size_t>(cj) * view.Columns + ci + 1] =
-            tileOffsets[id][c + 1] - tileOffsets[id][c];
+          view.Offsets[column(id, c) + 1] = tileOffsets[id][c + 1] - tileOffsets[id][c];
         }
       }
       for (size_t c = 1; c < view.Offsets.size(); ++c)
       {
-        view.Offsets[c] = view.Offsets[c - 1] + counts[c];
+        view.Offsets[c] += view.Offsets[c - 1];
       }
       view.Ranges.resize(static_cast<size_t>(view.Offsets.back()));
       for (int id = 0; id < tileCount; ++id)
       {
-        const int ti = id % tw, tj = tileRowBegin + id / tw;
         for (int c = 0; c < PerTile; ++c)
         {
-          const int ci = ti * (TileSize / LeafSize) + c % (TileSize / LeafSize);
-          const int cj = tj * (TileSize / LeafSize) + c / (TileSize / LeafSize);
           std::copy(tileRanges[id].begin() + tileOffsets[id][c],
             tileRanges[id].begin() + tileOffsets[id][c + 1],
-            view.Ranges.begin() + view.Offsets[static_cast<size_t>(cj) * view.Columns + ci]);
+            view.Ranges.begin() + view.Offsets[column(id, c)]);
         }
       }
     }
