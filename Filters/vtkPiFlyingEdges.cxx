@@ -1510,8 +1510,7 @@ struct VertexAttributes
         return 0.5 * (lo + hi);
       }
       // F' = P·Σ f_i'/f_i, so the Newton step on F is (1 − r/P) / Σ f_i'/f_i, with r/P
-      // from the logarithms (never overflows; inf only where P is far below r).
-      // The Newton step on F, (1 − r/P) / Σ f_i'/f_i, with r/P from the logarithms;
+      // from the logarithms (never overflows; inf only where P is far below r);
       // bisection where P = 0, where the step leaves the bracket, or where it is not
       // half the step before the last (Newton crawling down an exponential-like F).
       double next = 0.5 * (lo + hi);

@@ -74,9 +74,10 @@
  * but contours, projects and attributes only its own slab; the union of the pieces is
  * the serial mesh, with the seam vertices present in both neighbours.
  *
- * The largest work buffer (the active blocks' values) is kept between executions, so re-meshing does not pay for fresh memory again;
- * they are released with the object. So are each polynomial factor's row
- * restrictions (pass 2), keyed by the factor's terms and placement and by the grid:
+ * The largest work buffer (the active blocks' values) is kept between executions, so
+ * re-meshing does not pay for fresh memory again; it is released with the object. So
+ * are each polynomial factor's row restrictions (pass 2), keyed by the factor's terms
+ * and placement and by the grid:
  * when an edit changes one factor, only that factor is restricted again, and the mesh
  * is bit-identical to a fresh execution's (up to 64 MiB of coefficients; beyond that
  * every execution restricts every factor).

@@ -32,6 +32,13 @@ const TypeNames Names[] = {
 
 constexpr double Pi = 3.14159265358979323846;
 
+// No off-diagonal entry: each local axis is a world axis (scaled, translated).
+bool IsDiagonal(const double A[3][3])
+{
+  return A[0][1] == 0 && A[0][2] == 0 && A[1][0] == 0 && A[1][2] == 0 && A[2][0] == 0 &&
+    A[2][1] == 0;
+}
+
 bool Finite3(const double v[3])
 {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
@@ -161,8 +168,7 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
 void PolynomialFactor::EvaluateStar(const double p[3], double h, double values[7], double g[3]) const
 {
   const double(*A)[3] = this->A;
-  if (A[0][1] == 0 && A[0][2] == 0 && A[1][0] == 0 && A[1][2] == 0 && A[2][0] == 0 &&
-    A[2][1] == 0)
+  if (IsDiagonal(A))
   {
     // p ± h·e_a is q ± h·A_aa·e_a in the local frame.
     double q[3], gl[3];
@@ -257,8 +263,7 @@ void PolynomialFactor::PrepareIntervals()
     this->Gradient[i] = this->Poly.Derivative(i);
   }
   this->HasGradient = true;
-  this->Diagonal = this->A[0][1] == 0 && this->A[0][2] == 0 && this->A[1][0] == 0 &&
-    this->A[1][2] == 0 && this->A[2][0] == 0 && this->A[2][1] == 0;
+  this->Diagonal = IsDiagonal(this->A);
   this->HasWorld = false;
   if (this->Poly.GetDegree() >= 0 && this->Poly.GetDegree() <= TaylorMaxDegree)
   {

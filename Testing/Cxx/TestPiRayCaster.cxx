@@ -378,17 +378,21 @@ int TestPiRayCaster(int, char*[])
     PI_CHECK(cup->LoadModel(pitest::ModelPath("cup_a1.0.pisurf").c_str()));
     for (const bool parallel : { false, true })
     {
+      // One camera, given to the caster and to VTK's renderer.
       const int w = 97, h = 61;
+      const double position[3] = { 4.0, -6.5, 3.0 }, focal[3] = { 0.4, 0.2, -1.2 },
+                   up[3] = { 0.1, 0.2, 1.0 };
+      const double angle = 27.0, scale = 2.1;
       vtkNew<vtkPiRayCaster> camera;
       camera->SetPiSurface(cup);
       camera->SetViewMode(vtkPiRayCaster::CAMERA);
       camera->SetResolution(w, h);
-      camera->SetCameraPosition(4.0, -6.5, 3.0);
-      camera->SetCameraFocalPoint(0.4, 0.2, -1.2);
-      camera->SetCameraViewUp(0.1, 0.2, 1.0);
-      camera->SetViewAngle(27.0);
+      camera->SetCameraPosition(position);
+      camera->SetCameraFocalPoint(focal);
+      camera->SetCameraViewUp(up);
+      camera->SetViewAngle(angle);
       camera->SetParallelProjection(parallel);
-      camera->SetParallelScale(2.1);
+      camera->SetParallelScale(scale);
       camera->Update();
       vtkPolyData* out = camera->GetOutput();
       vtkNew<vtkRenderWindow> window;
@@ -397,12 +401,12 @@ int TestPiRayCaster(int, char*[])
       vtkNew<vtkRenderer> renderer;
       window->AddRenderer(renderer);
       vtkCamera* c = renderer->GetActiveCamera();
-      c->SetPosition(4.0, -6.5, 3.0);
-      c->SetFocalPoint(0.4, 0.2, -1.2);
-      c->SetViewUp(0.1, 0.2, 1.0);
-      c->SetViewAngle(27.0);
+      c->SetPosition(position);
+      c->SetFocalPoint(focal);
+      c->SetViewUp(up);
+      c->SetViewAngle(angle);
       c->SetParallelProjection(parallel);
-      c->SetParallelScale(2.1);
+      c->SetParallelScale(scale);
       c->SetClippingRange(0.5, 50.0);
       vtkDataArray* pixel = Array(out, "PixelIndex");
       double worst = 0.0;
