@@ -6,18 +6,24 @@
  * Pi Ray Cast and Pi Sample Function take their Pi-surface from their input's field-data
  * string `PiSurfaceModel` (written by Pi Surface, Pi Primitive, Pi Product, the model
  * reader and the molecular surface) when an input is connected, else from the one set
- * on them (SetPiSurface).
+ * on them (SetPiSurface). Pi Ray Cast also takes a molecule, of any size and either mode,
+ * from the compact arrays the molecular surface writes (PiMoleculeInput).
  */
 #ifndef PiInputModel_h
 #define PiInputModel_h
 
+#include "PiModel.h"
+#include "PiMolecule.h"
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkPiSurface.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 /// The model `input` carries, or `set` without an input; null with the reason in
 /// `error` if the input carries no model or an invalid one, or there is neither.
@@ -48,5 +54,85 @@ inline vtkSmartPointer<vtkPiSurface> PiSurfaceOf(
   }
   return surface;
 }
+
+/// The molecule a Molecular Pi Surface output carries in its field data:
+/// `PiMoleculeCenters` (3 components per atom, Å), `PiMoleculeRadii` (Å) and
+/// `PiMoleculeSettings` (9 values: Mode 0 = Global or 1 = Local, Blending,
+/// InfluenceRadius, then the bounds x0, x1, y0, y1, z0, z1 it was meshed in).
+struct PiMoleculeInput
+{
+  bool Present = false;
+  std::vector<double> Centers, Radii;
+  pisurf::MoleculeSettings Settings;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+
+  /// Present stays false without the three arrays; false with the reason in `error`
+  /// when they are there but inconsistent or not finite.
+  bool Read(vtkDataObject* input, std::string& error)
+  {
+    vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+    vtkDataArray* centers = fd ? fd->GetArray("PiMoleculeCenters") : nullptr;
+    vtkDataArray* radii = fd ? fd->GetArray("PiMoleculeRadii") : nullptr;
+    vtkDataArray* settings = fd ? fd->GetArray("PiMoleculeSettings") : nullptr;
+    if (!centers || !radii || !settings)
+    {
+      return true;
+    }
+    const vtkIdType n = radii->GetNumberOfTuples();
+    if (centers->GetNumberOfComponents() != 3 || centers->GetNumberOfTuples() != n ||
+      radii->GetNumberOfComponents() != 1 || settings->GetNumberOfValues() != 9 || n == 0)
+    {
+      error = "Malformed molecule field data: PiMoleculeCenters (3 components), "
+              "PiMoleculeRadii (one per atom, at least one) and PiMoleculeSettings (9 values) "
+              "must agree";
+      return false;
+    }
+    this->Centers.resize(3 * n);
+    this->Radii.resize(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Centers[3 * i + k] = centers->GetComponent(i, k);
+      }
+      this->Radii[i] = radii->GetComponent(i, 0);
+      if (!(this->Radii[i] > 0 && std::isfinite(this->Radii[i])) ||
+        !std::isfinite(this->Centers[3 * i] + this->Centers[3 * i + 1] + this->Centers[3 * i + 2]))
+      {
+        error = "Malformed molecule field data: atom " + std::to_string(i) +
+          " has a non-finite centre or a radius that is not positive";
+        return false;
+      }
+    }
+    double v[9];
+    for (int k = 0; k < 9; ++k)
+    {
+      v[k] = settings->GetComponent(k / settings->GetNumberOfComponents(),
+        k % settings->GetNumberOfComponents());
+    }
+    std::copy(v + 3, v + 9, this->Bounds);
+    if ((v[0] != 0 && v[0] != 1) || !(v[1] >= 0 && std::isfinite(v[1])) ||
+      !(v[2] > 0 && std::isfinite(v[2])) || !pisurf::ValidBounds(this->Bounds))
+    {
+      error = "Malformed PiMoleculeSettings: expected Mode 0 or 1, Blending >= 0, "
+              "InfluenceRadius > 0 and valid bounds";
+      return false;
+    }
+    this->Settings.Mode = v[0] == 1 ? pisurf::MoleculeMode::Local : pisurf::MoleculeMode::Global;
+    this->Settings.Blending = v[1];
+    this->Settings.InfluenceRadius = v[2];
+    this->Present = true;
+    return true;
+  }
+
+  /// Passes the three arrays on to `output` (so the molecule reaches further filters).
+  static void Forward(vtkDataObject* input, vtkDataObject* output)
+  {
+    for (const char* name : { "PiMoleculeCenters", "PiMoleculeRadii", "PiMoleculeSettings" })
+    {
+      output->GetFieldData()->AddArray(input->GetFieldData()->GetAbstractArray(name));
+    }
+  }
+};
 
 #endif

@@ -548,6 +548,18 @@ int vtkPiMoleculeSurface::RequestData(
   }
   fd->AddArray(centerArray);
   fd->AddArray(radiusOut);
+  // With the mode, r, the influence radius and the bounds: Pi Ray Cast rebuilds the field
+  // from these (PiInputModel.h), for any size and either mode.
+  vtkNew<vtkDoubleArray> settingsOut;
+  settingsOut->SetName("PiMoleculeSettings");
+  settingsOut->SetNumberOfTuples(9);
+  const double settingValues[9] = { this->Mode == LOCAL ? 1.0 : 0.0, this->Blending,
+    this->InfluenceRadius, bounds[0], bounds[1], bounds[2], bounds[3], bounds[4], bounds[5] };
+  for (int k = 0; k < 9; ++k)
+  {
+    settingsOut->SetValue(k, settingValues[k]);
+  }
+  fd->AddArray(settingsOut);
   if (this->Mode == GLOBAL && count <= MaximumJsonAtoms)
   {
     pisurf::Model model;

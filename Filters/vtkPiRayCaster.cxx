@@ -33,6 +33,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -516,21 +517,35 @@ int vtkPiRayCaster::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
-  // The surface: from the input's model, or the one set.
+  // The surface: a molecule's (Molecular Pi Surface output, any size or mode), else the
+  // input's model, or the one set.
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  const vtkSmartPointer<vtkPiSurface> surface =
-    PiSurfaceOf(vtkDataObject::GetData(inputVector[0], 0), this->PiSurface, error);
-  if (!surface)
+  PiMoleculeInput molecule;
+  if (!molecule.Read(input, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  auto kernel = surface->GetKernel();
-  if (!kernel || kernel->GetNumberOfFactors() == 0)
+  vtkSmartPointer<vtkPiSurface> surface;
+  std::shared_ptr<const pisurf::ProductKernel> kernel;
+  if (!molecule.Present)
   {
-    vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
-    return 0;
+    surface = PiSurfaceOf(input, this->PiSurface, error);
+    if (!surface)
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    kernel = surface->GetKernel();
+    if (!kernel || kernel->GetNumberOfFactors() == 0)
+    {
+      vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
+      return 0;
+    }
   }
+  // Orthographic row restriction and the empty-space octree: polynomial products only.
+  const bool polynomial = kernel && kernel->IsPolynomial();
   if (this->Resolution[0] < 1 || this->Resolution[1] < 1)
   {
     vtkErrorMacro(<< "Resolution must be at least 1 x 1 (got " << this->Resolution[0] << " x "
@@ -544,7 +559,24 @@ int vtkPiRayCaster::RequestData(
     return 0;
   }
   double b[6];
-  if (!surface->ResolveBounds(this->Bounds, b))
+  if (molecule.Present)
+  {
+    if (std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; }))
+    {
+      std::copy(molecule.Bounds, molecule.Bounds + 6, b);
+    }
+    else if (pisurf::ValidBounds(this->Bounds))
+    {
+      std::copy(this->Bounds, this->Bounds + 6, b);
+    }
+    else
+    {
+      vtkErrorMacro(<< "No bounds for the rays: bounds must be finite with x0 < x1, y0 < y1, "
+                       "z0 < z1 (or all zero for the molecule's)");
+      return 0;
+    }
+  }
+  else if (!surface->ResolveBounds(this->Bounds, b))
   {
     vtkErrorMacro(<< "No bounds for the rays: " << surface->GetErrorMessage());
     return 0;
@@ -722,11 +754,31 @@ int vtkPiRayCaster::RequestData(
   const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * (rowEnd - rowBegin);
   std::vector<std::vector<Hit>> rows(rowCount);
   std::atomic<bool> abort{ false };
-  const pisurf::RayCaster caster(*kernel);
+  std::unique_ptr<pisurf::MoleculeField> field;
+  std::unique_ptr<pisurf::RayCaster> casterPointer;
+  if (molecule.Present)
+  {
+    try
+    {
+      field = std::make_unique<pisurf::MoleculeField>(
+        molecule.Centers, molecule.Radii, molecule.Settings, b);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      return 0;
+    }
+    casterPointer = std::make_unique<pisurf::RayCaster>(*field);
+  }
+  else
+  {
+    casterPointer = std::make_unique<pisurf::RayCaster>(*kernel);
+  }
+  const pisurf::RayCaster& caster = *casterPointer;
   // Orthographic views of polynomial products restrict their rays from per-view
   // compositions (pisurf::RayGrid), about the middle of the box along the view.
   std::vector<std::unique_ptr<pisurf::RayGrid>> grids(views.size());
-  if (kernel->IsPolynomial())
+  if (polynomial)
   {
     for (size_t k = 0; k < views.size(); ++k)
     {
@@ -752,7 +804,7 @@ int vtkPiRayCaster::RequestData(
   }
   // Per view, the depth ranges of each leaf column that may hold roots.
   std::vector<ViewSkipping> skipping(views.size());
-  if (kernel->IsPolynomial() && this->SkipEmptySpace)
+  if (polynomial && this->SkipEmptySpace)
   {
     for (size_t k = 0; k < views.size(); ++k)
     {
@@ -1053,7 +1105,11 @@ int vtkPiRayCaster::RequestData(
   }
   output->GetFieldData()->AddArray(viewData);
   pisurf::Model model;
-  if (surface->GetCoreModel(model))
+  if (molecule.Present)
+  {
+    molecule.Forward(input, output); // the molecule goes downstream
+  }
+  else if (surface->GetCoreModel(model))
   {
     if (!model.HasBounds)
     {

@@ -1000,11 +1000,24 @@ bool MoleculeField::OffOuterSide(const double p[3]) const
 void MoleculeField::EvaluateVertex(
   const double p[3], double normal[3], double& gradientNorm, int& nearest) const
 {
+  double logGradientNorm;
+  this->EvaluateVertex(p, normal, gradientNorm, nearest, logGradientNorm);
+}
+
+double MoleculeField::EvaluateWithLog(const double p[3], double& logAbsF) const
+{
+  return this->Compute(p, logAbsF);
+}
+
+void MoleculeField::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
+  int& nearest, double& logGradientNorm) const
+{
   const Cell* cell = this->CellAt(p);
   if (this->Settings.Mode == MoleculeMode::Local)
   {
     this->LocalVertex(p, cell ? cell->Near.data() : nullptr, cell ? cell->Near.size() : 0,
       normal, gradientNorm, nearest, nullptr);
+    logGradientNorm = gradientNorm > 0 ? std::log(gradientNorm) : -HUGE_VAL;
     return;
   }
   std::vector<int> all;
@@ -1062,6 +1075,7 @@ void MoleculeField::EvaluateVertex(
   {
     normal[0] = normal[1] = normal[2] = 0.0;
     gradientNorm = 0.0;
+    logGradientNorm = -HUGE_VAL;
     return;
   }
   for (int k = 0; k < 3; ++k)
@@ -1070,6 +1084,7 @@ void MoleculeField::EvaluateVertex(
   }
   const double logNorm = std::log(norm) + logScale;
   gradientNorm = logNorm > LogMax ? DBL_MAX : std::exp(logNorm);
+  logGradientNorm = logNorm;
 }
 
 bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
@@ -1528,5 +1543,412 @@ int MoleculeField::ClassifyBox(const double box[6]) const
     return logMin > std::log(this->Level) + 1e-9 ? 1 : 0;
   }
   return SignOfProductMinus(enclosures, this->Level);
+}
+
+// ---------------------------------------------------------------------------------------
+// CastRay: certified roots along a ray.
+
+namespace
+{
+// Products of many intervals as [Lo, Hi]·2^E (no overflow).
+struct ScaledRange
+{
+  double Lo = 1.0, Hi = 1.0;
+  long E = 0;
+
+  void Multiply(double lo, double hi)
+  {
+    const double c0 = this->Lo * lo, c1 = this->Lo * hi, c2 = this->Hi * lo, c3 = this->Hi * hi;
+    this->Lo = std::min(std::min(c0, c1), std::min(c2, c3));
+    this->Hi = std::max(std::max(c0, c1), std::max(c2, c3));
+    const double a = std::max(std::fabs(this->Lo), std::fabs(this->Hi));
+    if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
+    {
+      int ex;
+      pisurf::Frexp(a, &ex);
+      this->Lo = pisurf::Ldexp(this->Lo, -ex);
+      this->Hi = pisurf::Ldexp(this->Hi, -ex);
+      this->E += ex;
+    }
+  }
+  // e^[lo, hi] (natural logarithms; false if too wide to represent).
+  bool MultiplyExp(double lo, double hi)
+  {
+    if (!(hi - lo < 600.0))
+    {
+      return false;
+    }
+    const double e = std::floor(lo / Ln2);
+    this->Multiply(std::exp(lo - e * Ln2), std::exp(hi - e * Ln2));
+    this->E += static_cast<long>(e);
+    return true;
+  }
+  // +1: every value exceeds `level` (>= 0); −1: every value is below it; 0: undecided.
+  int Compare(double level) const
+  {
+    double l = level;
+    if (level != 0.0)
+    {
+      l = this->E > 2000 ? 0.0 : this->E < -2000 ? HUGE_VAL : std::ldexp(level, static_cast<int>(-this->E));
+    }
+    if (this->Lo > l)
+    {
+      return 1;
+    }
+    return this->Hi < l ? -1 : 0;
+  }
+};
+
+// The range of a·s² + b·s + c over [s0, s1].
+inline void QuadraticRange(double a, double b, double c, double s0, double s1, double& lo, double& hi)
+{
+  const double v0 = (a * s0 + b) * s0 + c, v1 = (a * s1 + b) * s1 + c;
+  lo = std::min(v0, v1);
+  hi = std::max(v0, v1);
+  if (a != 0.0)
+  {
+    const double sv = -b / (2.0 * a);
+    if (sv > s0 && sv < s1)
+    {
+      const double vv = (a * sv + b) * sv + c;
+      lo = std::min(lo, vv);
+      hi = std::max(hi, vv);
+    }
+  }
+}
+}
+
+// One atom's factor restricted to the ray: f(s) = A·s² + B·s + C, s = t − the chunk's
+// middle; Span = ρ² − R² in Local mode.
+struct MoleculeField::RaySearch
+{
+  struct Atom
+  {
+    double A, B, C, Span, InverseSpan;
+  };
+  struct Piece
+  {
+    double A, B;
+    int Depth;
+    size_t Offset, Count; // its atoms in the pool
+  };
+
+  const MoleculeField& M;
+  const double* O;
+  const double* D;
+  RayRootOptions Options;
+  std::vector<RayRoot>& Roots;
+  RootCluster Cluster;
+  bool Local;
+  double Level;
+  // The chunk: its middle, its atoms and far field T(s) = T0 + T1·s + T2·s² ± Bound.
+  double Mid = 0.0;
+  std::vector<Atom> Atoms, AllAtoms;
+  bool HasFar = false;
+  double T0 = 0.0, T1 = 0.0, T2 = 0.0, Bound = 0.0;
+  std::vector<Piece> Stack;
+  std::vector<int> Pool;
+
+  RaySearch(const MoleculeField& m, const double* o, const double* d, const RayRootOptions& options,
+    std::vector<RayRoot>& roots)
+    : M(m)
+    , O(o)
+    , D(d)
+    , Options(options)
+    , Roots(roots)
+    , Cluster(roots, options.Tolerance)
+    , Local(m.Settings.Mode == MoleculeMode::Local)
+    , Level(m.Level)
+  {
+  }
+
+  bool Finished() const { return !this->Options.AllRoots && !this->Roots.empty(); }
+
+  // The atoms of `indices` restricted about the chunk's middle, into `out`.
+  template <class Indices>
+  void Restrict(const Indices& indices, std::vector<Atom>& out) const
+  {
+    out.clear();
+    const double* d = this->D;
+    const double p[3] = { this->O[0] + this->Mid * d[0], this->O[1] + this->Mid * d[1],
+      this->O[2] + this->Mid * d[2] };
+    const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    for (int i : indices)
+    {
+      const double* c = &this->M.Centers[3 * i];
+      const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+      const double R2 = this->M.Radii[i] * this->M.Radii[i];
+      Atom atom{ a, 2.0 * (d[0] * v[0] + d[1] * v[1] + d[2] * v[2]),
+        v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2, 0.0, 0.0 };
+      if (this->Local)
+      {
+        atom.Span = this->M.Rho2[i] - this->M.R2[i];
+        atom.InverseSpan = this->M.InvSpan[i];
+      }
+      out.push_back(atom);
+    }
+  }
+
+  // The sign of F on the piece [a, b] of the chunk (0: undecided), from `atoms[list]`
+  // and, with `far`, the far field (its bound B too with `bound`). Appends to `keep` the
+  // atoms that still matter on the piece (Local: those whose influence reaches it).
+  // Of the last Enclose: how many factors may vanish on the piece, and the last of them.
+  mutable int Straddling = 0, Straddler = -1;
+
+  int Enclose(double a, double b, const std::vector<Atom>& atoms, const int* list, size_t count,
+    bool far, bool bound, std::vector<int>* keep) const
+  {
+    this->Straddling = 0;
+    const double s0 = a - this->Mid, s1 = b - this->Mid;
+    const double sm = std::max(std::fabs(s0), std::fabs(s1));
+    ScaledRange P;
+    for (size_t k = 0; k < count; ++k)
+    {
+      const Atom& q = atoms[list[k]];
+      double lo, hi;
+      QuadraticRange(q.A, q.B, q.C, s0, s1, lo, hi);
+      // Rounding: of the terms (about a few ulps of their magnitude) and of the result.
+      const double slack = 1e-14 * (q.A * sm * sm + std::fabs(q.B) * sm + std::fabs(q.C)) +
+        1e-12 * std::max(std::fabs(lo), std::fabs(hi));
+      lo -= slack;
+      hi += slack;
+      if (lo <= 0.0 && hi >= 0.0)
+      {
+        ++this->Straddling;
+        this->Straddler = list[k];
+      }
+      if (this->Local)
+      {
+        if (lo >= q.Span)
+        {
+          continue; // beyond ρ on the whole piece: g = 1
+        }
+        // g = 1 + (f − 1)·w(u), u = f/(ρ² − R²) clamped to [0, 1], w decreasing from 1
+        // to 0 (g = f inside the sphere, where u = 0): interval arithmetic on each part.
+        const double u0 = std::min(1.0, std::max(0.0, lo * q.InverseSpan));
+        const double u1 = std::min(1.0, std::max(0.0, hi * q.InverseSpan));
+        const double w0 = std::max(0.0, WeightPolynomial(u1) - 1e-14);
+        const double w1 = std::min(1.0, WeightPolynomial(u0) + 1e-14);
+        const double m0 = lo - 1.0, m1 = hi - 1.0;
+        const double g0 = 1.0 + (m0 < 0 ? m0 * w1 : m0 * w0);
+        const double g1 = 1.0 + (m1 > 0 ? m1 * w1 : m1 * w0);
+        const double gs = 1e-14 * (1.0 + std::max(std::fabs(g0), std::fabs(g1)));
+        P.Multiply(g0 - gs, g1 + gs);
+      }
+      else
+      {
+        P.Multiply(lo, hi);
+      }
+      if (keep)
+      {
+        keep->push_back(list[k]);
+      }
+    }
+    if (far && this->HasFar)
+    {
+      double lo, hi;
+      QuadraticRange(this->T2, this->T1, this->T0, s0, s1, lo, hi);
+      const double slack = 1e-13 * (std::fabs(this->T0) + std::fabs(this->T1) * sm +
+                                     std::fabs(this->T2) * sm * sm) +
+        1e-9 + (bound ? this->Bound : 0.0);
+      if (!P.MultiplyExp(lo - slack, hi + slack))
+      {
+        return 0;
+      }
+    }
+    return P.Compare(this->Level);
+  }
+
+  // F's value at t (exact sign: the field's evaluation).
+  double At(double t) const
+  {
+    const double p[3] = { this->O[0] + t * this->D[0], this->O[1] + t * this->D[1],
+      this->O[2] + t * this->D[2] };
+    double logAbs;
+    return this->M.Compute(p, logAbs);
+  }
+
+  // The roots on [a, b] of the chunk from `atoms` (all of them at first) and, with
+  // `far`, the far field.
+  void Search(double a, double b, const std::vector<Atom>& atoms, bool far)
+  {
+    std::vector<Piece> stack;
+    std::vector<int> pool(atoms.size());
+    for (size_t k = 0; k < atoms.size(); ++k)
+    {
+      pool[k] = static_cast<int>(k);
+    }
+    stack.push_back({ a, b, 0, 0, atoms.size() });
+    std::vector<int> keep;
+    while (!stack.empty() && !this->Finished())
+    {
+      const Piece p = stack.back();
+      stack.pop_back();
+      pool.resize(p.Offset + p.Count); // drop what finished subtrees used
+      keep.clear();
+      const int sign = this->Enclose(p.A, p.B, atoms, pool.data() + p.Offset, p.Count, far, true, &keep);
+      if (sign != 0)
+      {
+        continue;
+      }
+      const int straddling = this->Straddling, straddler = this->Straddler;
+      if (far && this->HasFar && straddling == 0 &&
+        this->Enclose(p.A, p.B, atoms, pool.data() + p.Offset, p.Count, true, false, nullptr) != 0)
+      {
+        // Only the far field's bound leaves the piece undecided: every atom exactly.
+        this->Exact(p.A, p.B);
+        continue;
+      }
+      if (!this->Local && straddling == 1 && p.B - p.A > this->Options.Tolerance &&
+        p.Depth < this->Options.MaximumDepth &&
+        this->Isolate(p, atoms, pool.data() + p.Offset, far, straddler))
+      {
+        continue;
+      }
+      if (p.B - p.A <= this->Options.Tolerance || p.Depth >= this->Options.MaximumDepth)
+      {
+        const double va = this->At(p.A), vb = this->At(p.B);
+        const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+        this->Cluster.Add(0.5 * (p.A + p.B), !change, va, vb);
+        continue;
+      }
+      // Both halves share the atoms that still matter; the right half goes below the
+      // left on the stack (the left, smaller t, first).
+      const size_t offset = pool.size();
+      pool.insert(pool.end(), keep.begin(), keep.end());
+      const double mid = 0.5 * (p.A + p.B);
+      stack.push_back({ mid, p.B, p.Depth + 1, offset, keep.size() });
+      stack.push_back({ p.A, mid, p.Depth + 1, offset, keep.size() });
+    }
+  }
+
+  // Global mode, a shortcut past the halvings: where the one factor that may vanish on
+  // the piece (`straddler`) does, a guess t of the root (in a protein the product of
+  // the others is so large that F's root lies within rounding of that sphere), certified
+  // by enclosures that exclude the level on both sides of [t − tolerance/2,
+  // t + tolerance/2]; true (the root added) if they do. (In Local mode, or at a blended
+  // root, an enclosure of a piece that ends next to a root cannot exclude it: halvings.)
+  bool Isolate(const Piece& p, const std::vector<Atom>& atoms, const int* list, bool far, int straddler)
+  {
+    // The roots of A s² + B s + C (A > 0), the numerically stable way; one on the piece.
+    const Atom& q = atoms[straddler];
+    const double disc = q.B * q.B - 4.0 * q.A * q.C;
+    if (!(disc >= 0))
+    {
+      return false;
+    }
+    const double m = -0.5 * (q.B + std::copysign(std::sqrt(disc), q.B));
+    const double r0 = m / q.A, r1 = m != 0.0 ? q.C / m : r0;
+    const double s0 = p.A - this->Mid, s1 = p.B - this->Mid;
+    const bool in0 = r0 > s0 && r0 < s1, in1 = r1 > s0 && r1 < s1;
+    if (in0 == in1)
+    {
+      return false;
+    }
+    const double t = this->Mid + (in0 ? r0 : r1), h = 0.5 * this->Options.Tolerance;
+    if (!(t - h > p.A && t + h < p.B))
+    {
+      return false;
+    }
+    if (this->Enclose(p.A, t - h, atoms, list, p.Count, far, true, nullptr) == 0 ||
+      this->Enclose(t + h, p.B, atoms, list, p.Count, far, true, nullptr) == 0)
+    {
+      return false;
+    }
+    const double va = this->At(t - h), vb = this->At(t + h);
+    const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+    this->Cluster.Add(t, !change, va, vb);
+    return true;
+  }
+
+  // Every atom of the molecule, exactly, on [a, b] (no far field).
+  void Exact(double a, double b)
+  {
+    if (this->AllAtoms.empty())
+    {
+      std::vector<int> all(this->M.Radii.size());
+      for (size_t i = 0; i < all.size(); ++i)
+      {
+        all[i] = static_cast<int>(i);
+      }
+      this->Restrict(all, this->AllAtoms);
+    }
+    this->Search(a, b, this->AllAtoms, false); // (no far field: no nested Exact)
+  }
+
+  void Chunk(double a, double b)
+  {
+    this->Mid = 0.5 * (a + b);
+    this->AllAtoms.clear();
+    const double p[3] = { this->O[0] + this->Mid * this->D[0], this->O[1] + this->Mid * this->D[1],
+      this->O[2] + this->Mid * this->D[2] };
+    const Cell* cell = this->M.CellAt(p);
+    this->HasFar = false;
+    if (!cell)
+    {
+      if (!this->Local)
+      {
+        this->Exact(a, b); // outside the cells: every atom (F = 1 − level > 0 in Local)
+      }
+      return;
+    }
+    this->Restrict(cell->Near, this->Atoms);
+    const FarField& far = cell->GetFar();
+    if (far.HasFar)
+    {
+      this->HasFar = true;
+      double g[3];
+      far.Gradient(p, g);
+      const double* d = this->D;
+      const double* H = far.H;
+      this->T0 = far.Log(p);
+      this->T1 = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+      this->T2 = 0.5 * (H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2]) +
+        H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2];
+      this->Bound = far.Bound;
+    }
+    this->Search(a, b, this->Atoms, true);
+  }
+};
+
+void MoleculeField::CastRay(const double o[3], const double d[3], double t0, double t1,
+  const RayRootOptions& options, std::vector<RayRoot>& roots) const
+{
+  roots.clear();
+  if (!(t1 > t0) || !std::isfinite(t0) || !std::isfinite(t1) ||
+    !std::isfinite(o[0] + o[1] + o[2] + d[0] + d[1] + d[2]))
+  {
+    return;
+  }
+  // The segment cut where it crosses the cells' planes: each chunk lies in one cell.
+  std::vector<double> cuts{ t0, t1 };
+  const double s = this->Settings.CellSize;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      continue;
+    }
+    const double x0 = o[a] + t0 * d[a], x1 = o[a] + t1 * d[a];
+    const double k0 = std::max(0.0, std::ceil((std::min(x0, x1) - this->Origin[a]) / s));
+    const double k1 = std::min(double(this->Dims[a]), std::floor((std::max(x0, x1) - this->Origin[a]) / s));
+    for (double k = k0; k <= k1; ++k)
+    {
+      const double t = (this->Origin[a] + k * s - o[a]) / d[a];
+      if (t > t0 && t < t1)
+      {
+        cuts.push_back(t);
+      }
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  RaySearch search(*this, o, d, options, roots);
+  for (size_t c = 0; c + 1 < cuts.size() && !search.Finished(); ++c)
+  {
+    if (cuts[c + 1] > cuts[c])
+    {
+      search.Chunk(cuts[c], cuts[c + 1]);
+    }
+  }
 }
 }

@@ -59,6 +59,7 @@
 #define PiMolecule_h
 
 #include "PiField.h"
+#include "PiRayRoots.h"
 
 #include <atomic>
 #include <memory>
@@ -104,6 +105,25 @@ public:
   double EvaluateCompressed(const double p[3]) const override;
   void EvaluateVertex(
     const double p[3], double normal[3], double& gradientNorm, int& nearest) const override;
+  /// The same and ln|∇F| (−inf where ∇F = 0), which stays finite where |∇F| is clamped.
+  void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest,
+    double& logGradientNorm) const;
+  /// F(p) (clamped as Evaluate) and ln|F| without overflow.
+  double EvaluateWithLog(const double p[3], double& logAbsF) const;
+  /// The roots of F along the ray o + t·d for t in [t0, t1], in increasing t (only the
+  /// first unless options.AllRoots), each within options.Tolerance (in units of t), none
+  /// missed, at a cost that depends on the atoms near the ray and not on the molecule's
+  /// size. The segment is cut where it crosses the cells; on each piece F is enclosed
+  /// from its cell's atoms, each restricted exactly to the ray (f_i(t) is a quadratic:
+  /// its exact range, and in Local mode g_i's by interval arithmetic on f_i, w(u) and
+  /// f_i − 1), times the cell's far field (Global: e^(T(t) ± B), T's exact range). A
+  /// piece whose enclosure excludes the level has no root; the others are halved down to
+  /// the tolerance, where a piece is a root (a crossing if F changes sign across it, else
+  /// Tangent), adjacent ones merged (RootCluster). Where only the far field's bound B
+  /// keeps a piece undecided, every atom enters exactly instead. Local mode drops an
+  /// atom from a piece's halves once its influence no longer reaches the piece.
+  void CastRay(const double o[3], const double d[3], double t0, double t1,
+    const RayRootOptions& options, std::vector<RayRoot>& roots) const;
   /// True inside any atom sphere (|p − c_i| < R_i), when the level is positive. On
   /// every sphere one factor vanishes (g_i = f_i there, in Local mode too), so P = 0 and
   /// F = −level < 0: no component of {F > 0} crosses a sphere. The outer one contains
@@ -180,6 +200,8 @@ private:
   void LocalVertex(const double p[3], const int* atoms, size_t count, double normal[3],
     double& gradientNorm, int& nearest, bool* inside) const;
   double ComputeExact(const double p[3], double& logAbsF) const;
+  // CastRay's search of one piece of the ray (see PiMolecule.cxx).
+  struct RaySearch;
 
   std::vector<double> Centers;
   std::vector<double> Radii;

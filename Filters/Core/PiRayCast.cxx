@@ -2,6 +2,7 @@
 #include "PiRayCast.h"
 
 #include "PiFloat.h"
+#include "PiMolecule.h"
 #include "PiProduct.h"
 
 #include <algorithm>
@@ -11,8 +12,13 @@
 namespace pisurf
 {
 
+RayCaster::RayCaster(const MoleculeField& molecule)
+  : Molecule(&molecule)
+{
+}
+
 RayCaster::RayCaster(const ProductKernel& kernel)
-  : Kernel(kernel)
+  : Kernel(&kernel)
 {
   for (size_t f = 0; f < kernel.GetNumberOfFactors(); ++f)
   {
@@ -29,20 +35,25 @@ void RayCaster::Cast(const double start[3], const double d[3], double length,
   const RayRootOptions& options, std::vector<RayRoot>& roots) const
 {
   roots.clear();
-  if (this->Kernel.IsPolynomial())
+  if (this->Molecule)
+  {
+    this->Molecule->CastRay(start, d, 0.0, length, options, roots);
+    return;
+  }
+  if (this->Kernel->IsPolynomial())
   {
     thread_local std::vector<double> coefficients;
-    coefficients.resize(this->Kernel.GetLineCoefficientCount());
-    this->Kernel.RestrictLine(start, d, coefficients.data());
+    coefficients.resize(this->Kernel->GetLineCoefficientCount());
+    this->Kernel->RestrictLine(start, d, coefficients.data());
     FindRayRoots(coefficients.data(), this->Counts.data(), static_cast<int>(this->Counts.size()),
-      this->Kernel.GetBlending(), 0.0, length, options, roots);
+      this->Kernel->GetBlending(), 0.0, length, options, roots);
     return;
   }
   // The documented fallback for non-polynomial factors: a sign scan and bisection.
   const int n = 4096;
   auto at = [&](double t) {
     const double p[3] = { start[0] + t * d[0], start[1] + t * d[1], start[2] + t * d[2] };
-    return this->Kernel.EvaluateCompressed(p);
+    return this->Kernel->EvaluateCompressed(p);
   };
   double ta = 0.0, va = at(0.0);
   for (int s = 1; s <= n && (options.AllRoots || roots.empty()); ++s)
@@ -62,7 +73,7 @@ void RayCaster::CastRestricted(const double* coefficients, double t0, double t1,
 {
   roots.clear();
   FindRayRoots(coefficients, this->Counts.data(), static_cast<int>(this->Counts.size()),
-    this->Kernel.GetBlending(), t0, t1, options, roots);
+    this->Kernel->GetBlending(), t0, t1, options, roots);
 }
 
 RayGrid::RayGrid(const ProductKernel& kernel, const double O[3], const double U[3],
@@ -202,9 +213,25 @@ static bool ProbesSayZeroGradient(double gradient, double logGradient, double pr
 bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
   double& gradientNorm, int& nearest) const
 {
+  if (this->Molecule)
+  {
+    // The same test in logarithms: ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
+    double logGradient;
+    this->Molecule->EvaluateVertex(p, normal, gradientNorm, nearest, logGradient);
+    double logProbe = -HUGE_VAL;
+    for (int k = 0; k < 6; ++k)
+    {
+      double q[3] = { p[0], p[1], p[2] };
+      q[k / 2] += (k % 2 ? probe : -probe);
+      double logAbs;
+      this->Molecule->EvaluateWithLog(q, logAbs);
+      logProbe = std::max(logProbe, logAbs);
+    }
+    return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
+  }
   double logGradient, mantissa[6];
   long exponent[6];
-  this->Kernel.EvaluateVertexStar(
+  this->Kernel->EvaluateVertexStar(
     p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
   return ProbesSayZeroGradient(gradientNorm, logGradient, probe, tolerance, mantissa, exponent);
 }

@@ -18,6 +18,7 @@
 
 namespace pisurf
 {
+class MoleculeField;
 class ProductKernel;
 
 /// Casts rays at one product. Reentrant: several threads may cast with one caster.
@@ -25,6 +26,8 @@ class RayCaster
 {
 public:
   explicit RayCaster(const ProductKernel& kernel);
+  /// Casts at a molecule's field (MoleculeField::CastRay), whatever its size or mode.
+  explicit RayCaster(const MoleculeField& molecule);
 
   /// Roots of F(start + t·d) on [0, length], in increasing t (d need not be unit; t is
   /// then in units of |d|). `options.AllRoots` false stops at the first.
@@ -47,7 +50,8 @@ public:
   size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
 
 private:
-  const ProductKernel& Kernel;
+  const ProductKernel* Kernel = nullptr;
+  const MoleculeField* Molecule = nullptr;
   std::vector<int> Counts; // line coefficients per polynomial factor
   size_t LineCoefficients = 0;
 };

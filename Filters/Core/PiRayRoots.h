@@ -98,6 +98,50 @@ struct RayRootOptions
   int MaximumDepth = 200;   ///< subdivision depth guard
 };
 
+/// The roots of the subdivision searches (FindRayRoots, MoleculeField::CastRay), which
+/// arrive in increasing t. One within 2·tolerance of the last root added joins
+/// its cluster: the tiny pieces on both sides of one root, or the chain of them where F
+/// stays within the rounding slack around a multiple root (thousands of pieces wide
+/// for a double root), report one root, at the middle of the cluster's first and last
+/// members. A cluster is tangent when F has the same sign before and after it (at the
+/// start of its first piece and the end of its last), or, where one of those values is
+/// 0, when all its members are.
+class RootCluster
+{
+public:
+  RootCluster(std::vector<RayRoot>& roots, double tolerance)
+    : Roots(roots)
+    , Start(roots.size())
+    , Tolerance(tolerance)
+  {
+  }
+  // The root t of a piece where F is `before` at its start and `after` at its end.
+  void Add(double t, bool tangent, double before, double after)
+  {
+    if (this->Roots.size() > this->Start && t - this->Last <= 2.0 * this->Tolerance)
+    {
+      this->Last = t;
+      this->AllTangent = this->AllTangent && tangent;
+      RayRoot& root = this->Roots.back();
+      root.T = 0.5 * (this->First + this->Last);
+      root.Tangent = this->Before != 0.0 && after != 0.0 ? (this->Before > 0) == (after > 0)
+                                                         : this->AllTangent;
+      return;
+    }
+    this->Roots.push_back({ t, tangent });
+    this->First = this->Last = t;
+    this->Before = before;
+    this->AllTangent = tangent;
+  }
+
+private:
+  std::vector<RayRoot>& Roots;
+  size_t Start;
+  double Tolerance;
+  double First = 0.0, Last = 0.0, Before = 0.0;
+  bool AllTangent = true;
+};
+
 /// Roots of Π p_i(t) − r on [t0, t1], in increasing t. `factors[i]` holds the ascending
 /// coefficients of p_i. Returns false (roots untouched) if an input is not finite.
 bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0,
