@@ -41,9 +41,11 @@
  * {F > 0} lies outside every sphere, and the mesher's flood fill does not enter points
  * inside a sphere (pisurf::Field::OffOuterSide). Exact vertices (roots of F on the grid
  * edges; an edge that runs into such a wall gets the root nearest the outside), point
- * data `Normals`, `Factor` (index of the nearest atom) and `AtomicNumber`, and field data: `PiSurfaceModel`
- * (the Global model as .pisurf JSON, for molecules up to 10000 atoms, so that Pi Ray
- * Cast works downstream), `PiMoleculeCenters` and `PiMoleculeRadii` (the atoms, compact),
+ * data `Normals`, `Factor` (index of the nearest atom) and `AtomicNumber`, and field data:
+ * `PiMoleculeCenters`, `PiMoleculeRadii` (the atoms, compact) and `PiMoleculeSettings`
+ * (Mode 0/1, Blending, InfluenceRadius, then the bounds: vtkPiRayCaster casts at the
+ * molecule's field from these, either mode, any size), `PiSurfaceModel` (the Global
+ * model as .pisurf JSON, up to 10000 atoms, for vtkPiImageTriangulator and others),
  * `SurfaceArea` and `EnclosedVolume` of the mesh (one-piece runs only; the volume is
  * Σ p0·(p1 × p2)/6 over the triangles, which face ∇F: the volume of {F < 0} inside it).
  *

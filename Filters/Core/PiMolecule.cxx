@@ -1750,7 +1750,7 @@ struct MoleculeField::RaySearch
       QuadraticRange(this->T2, this->T1, this->T0, s0, s1, lo, hi);
       const double slack = 1e-13 * (std::fabs(this->T0) + std::fabs(this->T1) * sm +
                                      std::fabs(this->T2) * sm * sm) +
-        1e-9 + (bound ? this->Bound : 0.0);
+        1e-13 + (bound ? this->Bound : 0.0);
       if (!P.MultiplyExp(lo - slack, hi + slack))
       {
         return 0;
@@ -1826,7 +1826,7 @@ struct MoleculeField::RaySearch
   // the piece (`straddler`) does, a guess t of the root (in a protein the product of
   // the others is so large that F's root lies within rounding of that sphere), certified
   // by enclosures that exclude the level on both sides of [t − tolerance/2,
-  // t + tolerance/2]; true (the root added) if they do. (In Local mode, or at a blended
+  // t + tolerance/2]; true if they do (that middle then treated as a leaf). (In Local mode, or at a blended
   // root, an enclosure of a piece that ends next to a root cannot exclude it: halvings.)
   bool Isolate(const Piece& p, const std::vector<Atom>& atoms, const int* list, bool far, int straddler)
   {
@@ -1855,9 +1855,14 @@ struct MoleculeField::RaySearch
     {
       return false;
     }
-    const double va = this->At(t - h), vb = this->At(t + h);
-    const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
-    this->Cluster.Add(t, !change, va, vb);
+    // The middle, as a leaf of the halvings: no root if its enclosure excludes the level
+    // (a sphere crossed inside another atom, where F < 0 on both sides).
+    if (this->Enclose(t - h, t + h, atoms, list, p.Count, far, true, nullptr) == 0)
+    {
+      const double va = this->At(t - h), vb = this->At(t + h);
+      const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+      this->Cluster.Add(t, !change, va, vb);
+    }
     return true;
   }
 

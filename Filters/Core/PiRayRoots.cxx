@@ -537,6 +537,9 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   product[0] = 1.0;
   int current = 0; // degree of the product so far
   long exponent = 0;
+  // Π_i Σ_k |weighted Bernstein coefficient of factor i|: bounds the sum of the absolute
+  // values of the terms of every product coefficient, so its rounding (see below).
+  double magnitude = 1.0;
   w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
@@ -587,10 +590,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     exponent += e;
     const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
+    double absolute = 0.0;
     for (int k = 0; k < count; ++k)
     {
       bern[k] *= scale;
+      absolute += std::fabs(bern[k]);
     }
+    magnitude *= absolute;
     for (int k = 0; k < count; ++k)
     {
       w.Scaled[offset + k] = coefficients[offset + k] * scale;
@@ -633,6 +639,20 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   }
   const double rslack = 1e-9 * std::fabs(rs);
   const double fslack = 1e-12 * (factors + 1);
+  // The slack below is relative to each piece's own coefficients, while their rounding
+  // comes from the convolution's terms, up to `magnitude`: where those cancel by more
+  // than the slack covers (many factors over a long segment, say 20 atom spheres across
+  // 13 Å, whose terms reach 1e30 times the product), the general path decides instead,
+  // with each factor's hull (no cancellation between factors).
+  double largest = 0.0;
+  for (int k = 0; k < n; ++k)
+  {
+    largest = std::max(largest, std::fabs(pool[k] + rs));
+  }
+  if (!(4.0 * degree * 0x1p-52 * magnitude <= fslack * largest))
+  {
+    return false;
+  }
   const double* scaled = w.Scaled.data();
   auto phid = [&](double t, double& derivative) {
     double v = 1.0, dv = 0.0;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -380,4 +381,119 @@ TEST(MoleculeField, OffOuterSideBoxEqualsPointwise)
     EXPECT_GT(marked, points / 20);
     EXPECT_LT(marked, points - points / 10);
   }
+}
+
+// CastRay against references along random rays through small clusters: in Global mode
+// the certified roots of the product of all the atoms' quadratics restricted to the ray
+// (FindRayRoots), the same count, each within the tolerance, the same Tangent flags; in
+// Local mode (no polynomial reference: g is piecewise) every sign change of F between
+// 20000 samples holds a root, every crossing root has F of opposite signs a tolerance
+// before and after it. Roots strictly increase in both.
+TEST(MoleculeField, CastRayFindsEveryRoot)
+{
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  int compared = 0, roots = 0;
+  for (const double size : { 2.5, 4.0 })
+  {
+    const Cluster c = MakeCluster(size, 5);
+    for (const double r : { 0.01, 1.0, 30.0 })
+    {
+      for (const pisurf::MoleculeMode mode : { pisurf::MoleculeMode::Global, pisurf::MoleculeMode::Local })
+      {
+        pisurf::MoleculeSettings settings;
+        settings.Mode = mode;
+        settings.Blending = r;
+        const pisurf::MoleculeField field(c.Centers, c.Radii, settings, c.Region);
+        const double length = 2.0 * c.Region[1];
+        pisurf::RayRootOptions options;
+        options.Tolerance = 1e-10 * length;
+        for (int ray = 0; ray < 60; ++ray)
+        {
+          // Through a random point of the cluster, in a random or an axis direction.
+          double d[3] = { normal(rng), normal(rng), normal(rng) };
+          if (ray % 4 == 0)
+          {
+            d[0] = d[1] = d[2] = 0.0;
+            d[ray / 4 % 3] = ray % 8 ? 1.0 : -1.0;
+          }
+          const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          double o[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            d[k] /= norm;
+            o[k] = 0.5 * size * normal(rng) * 0.5 - 0.5 * length * d[k];
+          }
+          std::vector<pisurf::RayRoot> found;
+          options.AllRoots = true;
+          field.CastRay(o, d, 0.0, length, options, found);
+          for (size_t k = 1; k < found.size(); ++k)
+          {
+            ASSERT_LT(found[k - 1].T, found[k].T) << "ray " << ray << " root " << k;
+          }
+          std::vector<pisurf::RayRoot> first;
+          options.AllRoots = false;
+          field.CastRay(o, d, 0.0, length, options, first);
+          ASSERT_EQ(first.size(), found.empty() ? 0u : 1u);
+          if (!found.empty())
+          {
+            EXPECT_NEAR(first[0].T, found[0].T, 2 * options.Tolerance);
+          }
+          auto F = [&](double t) {
+            const double p[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+            return field.Evaluate(p);
+          };
+          roots += static_cast<int>(found.size());
+          if (mode == pisurf::MoleculeMode::Global)
+          {
+            std::vector<std::vector<double>> factors;
+            for (size_t i = 0; i < c.Radii.size(); ++i)
+            {
+              const double* ci = &c.Centers[3 * i];
+              const double v[3] = { o[0] - ci[0], o[1] - ci[1], o[2] - ci[2] };
+              factors.push_back({ v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - c.Radii[i] * c.Radii[i],
+                2.0 * (d[0] * v[0] + d[1] * v[1] + d[2] * v[2]), 1.0 });
+            }
+            std::vector<pisurf::RayRoot> reference;
+            options.AllRoots = true;
+            ASSERT_TRUE(pisurf::FindRayRoots(factors, r, 0.0, length, options, reference));
+            ASSERT_EQ(found.size(), reference.size()) << "ray " << ray << " r " << r;
+            for (size_t k = 0; k < found.size(); ++k)
+            {
+              EXPECT_NEAR(found[k].T, reference[k].T, 2 * options.Tolerance);
+              EXPECT_EQ(found[k].Tangent, reference[k].Tangent);
+            }
+            ++compared;
+            continue;
+          }
+          const int samples = 20000;
+          double ta = 0.0, va = F(0.0);
+          for (int s = 1; s <= samples; ++s)
+          {
+            const double tb = length * s / samples, vb = F(tb);
+            if ((va < 0) != (vb < 0))
+            {
+              const bool hit = std::any_of(found.begin(), found.end(), [&](const pisurf::RayRoot& x) {
+                return x.T >= ta - options.Tolerance && x.T <= tb + options.Tolerance;
+              });
+              EXPECT_TRUE(hit) << "a sign change in [" << ta << ", " << tb << "] without a root";
+            }
+            ta = tb;
+            va = vb;
+          }
+          for (const pisurf::RayRoot& x : found)
+          {
+            if (!x.Tangent)
+            {
+              const double before = F(x.T - options.Tolerance), after = F(x.T + options.Tolerance);
+              EXPECT_TRUE((before < 0) != (after < 0)) << "root " << x.T << " is no crossing";
+            }
+          }
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 2 * 3 * 2 * 60);
+  EXPECT_GT(roots, 500);
 }

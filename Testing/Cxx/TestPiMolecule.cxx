@@ -4,6 +4,8 @@
 
 #include "vtkCMLMoleculeReader.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkMath.h"
 #include "vtkFieldData.h"
 #include "vtkMassProperties.h"
 #include "vtkMolecule.h"
@@ -11,13 +13,19 @@
 #include "vtkPDBReader.h"
 #include "vtkPiMoleculeReader.h"
 #include "vtkPiMoleculeSurface.h"
+#include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
+#include "vtkStaticPointLocator.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <string>
 
 namespace
@@ -127,6 +135,154 @@ int BadFile(const std::string& path, const std::string& text)
   PI_CHECK(reader->GetOutput()->GetNumberOfAtoms() == 0);
   return failures;
 }
+// Pi Ray Cast downstream of the molecular surface. (1) Acetic acid, Global, r = 1 (a
+// blended surface): the molecule path (the field rebuilt from PiMoleculeCenters, Radii
+// and Settings) gives the hits the polynomial path gives from PiSurfaceModel (the same
+// output without PiMoleculeSettings): six views, all hits; none of its hits missed
+// (each matched within about two tolerances, with its Tangent flag), at most one in a
+// thousand extra, each a Tangent hit next to a real one (see vtkPiRayCaster.h). (2) 1a0q (3301 atoms) in Local
+// mode, which has no polynomial model: every first hit of the -Z view lies on the mesh
+// of the same field (within one grid spacing of its exact vertices). (3) A malformed
+// PiMoleculeSettings is an error.
+int RayCastDownstream()
+{
+  int failures = 0;
+  using Key = std::tuple<int, int, int, int>;
+  auto hits = [](vtkPolyData* input, int view, int n, bool all) {
+    vtkNew<vtkPiRayCaster> caster;
+    caster->SetInputData(input);
+    caster->SetViewMode(view);
+    caster->SetResolution(n, n);
+    caster->SetAllHits(all);
+    caster->Update();
+    std::map<Key, std::pair<double, int>> out;
+    vtkPolyData* o = caster->GetOutput();
+    vtkPointData* pd = o->GetPointData();
+    vtkDataArray* px = pd->GetArray("PixelIndex");
+    for (vtkIdType k = 0; px && k < o->GetNumberOfPoints(); ++k)
+    {
+      const Key key{ static_cast<int>(pd->GetArray("ViewIndex")->GetComponent(k, 0)),
+        static_cast<int>(px->GetComponent(k, 0)), static_cast<int>(px->GetComponent(k, 1)),
+        static_cast<int>(pd->GetArray("HitIndex")->GetComponent(k, 0)) };
+      out[key] = { pd->GetArray("Depth")->GetComponent(k, 0),
+        static_cast<int>(pd->GetArray("Tangent")->GetComponent(k, 0)) };
+    }
+    return out;
+  };
+  {
+    vtkNew<vtkCMLMoleculeReader> cml;
+    cml->SetFileName((Chemical + "carboxylic_acids/acetic_acid.cml").c_str());
+    vtkNew<vtkPiMoleculeSurface> surface;
+    surface->SetInputConnection(cml->GetOutputPort());
+    surface->SetSpacing(0.25);
+    surface->Update();
+    vtkPolyData* molecule = surface->GetOutput();
+    PI_CHECK(molecule->GetFieldData()->GetArray("PiMoleculeSettings") != nullptr);
+    vtkNew<vtkPolyData> polynomial;
+    polynomial->ShallowCopy(molecule);
+    vtkNew<vtkFieldData> fd;
+    fd->DeepCopy(molecule->GetFieldData());
+    fd->RemoveArray("PiMoleculeSettings");
+    polynomial->SetFieldData(fd);
+    const auto a = hits(molecule, vtkPiRayCaster::SIX_AXIS_VIEWS, 48, true);
+    const auto b = hits(polynomial, vtkPiRayCaster::SIX_AXIS_VIEWS, 48, true);
+    PI_CHECK(b.size() > 3000);
+    // Per pixel, the depths and flags of each path.
+    using Pixel = std::tuple<int, int, int>;
+    std::map<Pixel, std::vector<std::pair<double, int>>> pa, pb;
+    for (const auto& hit : a)
+    {
+      pa[Pixel(std::get<0>(hit.first), std::get<1>(hit.first), std::get<2>(hit.first))].push_back(hit.second);
+    }
+    for (const auto& hit : b)
+    {
+      pb[Pixel(std::get<0>(hit.first), std::get<1>(hit.first), std::get<2>(hit.first))].push_back(hit.second);
+    }
+    // (the tolerance is 1e-10 of the rays' box, about 15 A here)
+    int missed = 0, extra = 0, far = 0;
+    for (const auto& pixel : pb)
+    {
+      const auto& mine = pa[pixel.first];
+      for (const auto& hit : pixel.second)
+      {
+        missed += std::none_of(mine.begin(), mine.end(), [&](const std::pair<double, int>& x) {
+          return std::fabs(x.first - hit.first) <= 4e-9 && x.second == hit.second;
+        });
+      }
+      for (const auto& hit : mine)
+      {
+        if (std::none_of(pixel.second.begin(), pixel.second.end(), [&](const std::pair<double, int>& x) {
+              return std::fabs(x.first - hit.first) <= 4e-9;
+            }))
+        {
+          ++extra;
+          // A spurious Tangent hit next to a real one (see vtkPiRayCaster.h).
+          far += !(hit.second == 1 &&
+            std::any_of(pixel.second.begin(), pixel.second.end(),
+              [&](const std::pair<double, int>& x) { return std::fabs(x.first - hit.first) <= 1e-7; }));
+        }
+      }
+    }
+    PI_CHECK(pa.size() == pb.size());
+    PI_CHECK(missed == 0);
+    PI_CHECK(far == 0);
+    PI_CHECK(extra * 1000 <= static_cast<int>(b.size()));
+    if (missed || far || extra)
+    {
+      std::cerr << "  of " << b.size() << " hits: " << missed << " missed, " << extra
+                << " extra (" << far << " not a Tangent next to a real hit)\n";
+    }
+  }
+  {
+    vtkNew<vtkPiMoleculeReader> reader;
+    reader->SetFileName((Freesasa + "1a0q.pdb").c_str());
+    vtkNew<vtkPiMoleculeSurface> surface;
+    surface->SetInputConnection(reader->GetOutputPort());
+    surface->SetMode(vtkPiMoleculeSurface::LOCAL);
+    surface->SetSpacing(0.5);
+    surface->Update();
+    vtkPolyData* mesh = surface->GetOutput();
+    PI_CHECK(mesh->GetFieldData()->GetAbstractArray("PiSurfaceModel") == nullptr);
+    vtkNew<vtkPiRayCaster> caster;
+    caster->SetInputData(mesh);
+    caster->SetViewMode(vtkPiRayCaster::MINUS_Z);
+    caster->SetResolution(64, 64);
+    caster->Update();
+    vtkPolyData* cloud = caster->GetOutput();
+    PI_CHECK(cloud->GetNumberOfPoints() > 1000);
+    vtkNew<vtkStaticPointLocator> locator;
+    locator->SetDataSet(mesh);
+    locator->BuildLocator();
+    double worst = 0.0;
+    for (vtkIdType k = 0; k < cloud->GetNumberOfPoints(); ++k)
+    {
+      double p[3], q[3];
+      cloud->GetPoint(k, p);
+      mesh->GetPoint(locator->FindClosestPoint(p), q);
+      worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
+    }
+    PI_CHECK(worst < 0.5);
+    if (!(worst < 0.5))
+    {
+      std::cerr << "  a hit lies " << worst << " A from the mesh\n";
+    }
+    vtkNew<vtkPolyData> bad;
+    bad->ShallowCopy(mesh);
+    vtkNew<vtkFieldData> fd;
+    fd->DeepCopy(mesh->GetFieldData());
+    vtkNew<vtkDoubleArray> settings;
+    settings->SetName("PiMoleculeSettings");
+    settings->SetNumberOfTuples(3);
+    fd->AddArray(settings);
+    bad->SetFieldData(fd);
+    vtkNew<vtkPiRayCaster> badCaster;
+    badCaster->SetInputData(bad);
+    pitest::Watch watch(badCaster);
+    badCaster->Update();
+    PI_CHECK(watch.Error("Malformed molecule field data"));
+  }
+  return failures;
+}
 }
 
 int TestPiMolecule(int, char*[])
@@ -140,6 +296,7 @@ int TestPiMolecule(int, char*[])
     { 8, 26.881, -24.150, 0.0 }, { 8, 25.548, -21.840, 0.0 } };
   failures += PaperMolecule(formic, 3);
   failures += PaperMolecule(acetic, 4);
+  failures += RayCastDownstream();
 
   // CML files through VTK's reader.
   for (const char* name : { "carboxylic_acids/formic_acid", "carboxylic_acids/acetic_acid",
