@@ -415,8 +415,9 @@ private:
 //   sign: F monotone, as in the general path;
 // - else the piece is split (de Casteljau at 1/2) down to the tolerance, where a piece
 //   that still may hold a zero is a root (tangent without a sign change).
-// The slack covers rounding as the general path's does: 1e-12 relative per factor, and
-// r compared to 1e-9 relative.
+// The slack covers rounding: 1e-12 relative per factor as the general path's, r compared
+// to 1e-9 relative, and the error each piece inherits from the product's terms and the
+// splits above it (an absolute amount, which a small piece near a root cannot undercut).
 constexpr int FastDegree = 48;
 
 // The single root of phi in [a, b] (phi(a) = va, opposite signs at the ends): Newton's
@@ -639,20 +640,31 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   }
   const double rslack = 1e-9 * std::fabs(rs);
   const double fslack = 1e-12 * (factors + 1);
-  // The slack below is relative to each piece's own coefficients, while their rounding
-  // comes from the convolution's terms, up to `magnitude`: where those cancel by more
-  // than the slack covers (many factors over a long segment, say 20 atom spheres across
-  // 13 Å, whose terms reach 1e30 times the product), the general path decides instead,
-  // with each factor's hull (no cancellation between factors).
+  // Rounding. A piece's coefficients carry the error of the product's convolution (at
+  // most 4·degree·u times `magnitude`, the terms' size, u = 2^-52) and of each de
+  // Casteljau split above it (at most degree·u times the largest coefficient, which
+  // bounds every later one): `inherited` + depth·`perSplit`, whatever the piece's own
+  // size, plus the relative slack of its own size. Where the terms cancel by more than
+  // that relative slack covers at the start (many factors over a long segment, say 20
+  // atom spheres across 13 Å, whose terms reach 1e30 times the product), the pieces
+  // near the roots could never be decided: the general path works instead, with each
+  // factor's hull (no cancellation between factors).
   double largest = 0.0;
   for (int k = 0; k < n; ++k)
   {
     largest = std::max(largest, std::fabs(pool[k] + rs));
   }
-  if (!(4.0 * degree * 0x1p-52 * magnitude <= fslack * largest))
+  const double inherited = 4.0 * degree * 0x1p-52 * magnitude;
+  if (!(inherited <= fslack * largest))
   {
     return false;
   }
+  double top = 0.0;
+  for (int k = 0; k < n; ++k)
+  {
+    top = std::max(top, std::fabs(pool[k]));
+  }
+  const double perSplit = 2.0 * degree * 0x1p-52 * top;
   const double* scaled = w.Scaled.data();
   auto phid = [&](double t, double& derivative) {
     double v = 1.0, dv = 0.0;
@@ -688,7 +700,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       lo = std::min(lo, f[k]);
       hi = std::max(hi, f[k]);
     }
-    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + 1e-300;
+    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack +
+      inherited + p.Depth * perSplit + 1e-300;
     if (lo > slack || hi < -slack)
     {
       continue; // no root in this piece
