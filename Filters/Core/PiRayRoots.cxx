@@ -166,6 +166,13 @@ struct Workspace
   double Scratch[MaxDegree + 1];
 };
 
+// The general path's buffers of this thread.
+Workspace& GeneralWorkspace()
+{
+  thread_local Workspace workspace;
+  return workspace;
+}
+
 class Solver
 {
 public:
@@ -323,6 +330,12 @@ public:
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
   {
     RootCluster cluster(roots, this->Options.Tolerance);
+    this->Run(t0, t1, cluster, roots);
+  }
+
+  // The same, adding to a cluster the caller shares (the fast path hands pieces over).
+  void Run(double t0, double t1, RootCluster& cluster, std::vector<RayRoot>& roots)
+  {
     std::vector<double>& pool = this->W.Pool;
     std::vector<Piece>& stack = this->W.Stack;
     stack.clear();
@@ -700,8 +713,9 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       lo = std::min(lo, f[k]);
       hi = std::max(hi, f[k]);
     }
-    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack +
-      inherited + p.Depth * perSplit + 1e-300;
+    const double floor = inherited + p.Depth * perSplit;
+    const double slack =
+      fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + floor + 1e-300;
     if (lo > slack || hi < -slack)
     {
       continue; // no root in this piece
@@ -754,6 +768,20 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       {
         cluster.Add(va == 0.0 ? p.A : p.B, false, va, vb);
       }
+      if (!options.AllRoots && !roots.empty())
+      {
+        return true;
+      }
+      continue;
+    }
+    if (std::max(std::fabs(lo), std::fabs(hi)) <= 1e6 * floor)
+    {
+      // Neither monotone nor one-signed, and its values near the rounding the product
+      // form carries (a thin gap between two factors' zeros, a multiple root): the
+      // general path, whose factors each keep their own accuracy, decides the whole
+      // piece (in one go, so that a chain of undecided tiny pieces stays one root).
+      Solver(coefficients, counts, factors, r, options, GeneralWorkspace())
+        .Run(p.A, p.B, cluster, roots);
       if (!options.AllRoots && !roots.empty())
       {
         return true;
@@ -813,8 +841,7 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     return true;
   }
   roots.clear();
-  thread_local Workspace workspace;
-  Solver(coefficients, counts, factors, r, options, workspace).Run(t0, t1, roots);
+  Solver(coefficients, counts, factors, r, options, GeneralWorkspace()).Run(t0, t1, roots);
   return true;
 }
 
