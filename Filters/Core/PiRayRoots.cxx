@@ -166,13 +166,6 @@ struct Workspace
   double Scratch[MaxDegree + 1];
 };
 
-// The general path's buffers of this thread.
-Workspace& GeneralWorkspace()
-{
-  thread_local Workspace workspace;
-  return workspace;
-}
-
 class Solver
 {
 public:
@@ -330,12 +323,6 @@ public:
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
   {
     RootCluster cluster(roots, this->Options.Tolerance);
-    this->Run(t0, t1, cluster, roots);
-  }
-
-  // The same, adding to a cluster the caller shares (the fast path hands pieces over).
-  void Run(double t0, double t1, RootCluster& cluster, std::vector<RayRoot>& roots)
-  {
     std::vector<double>& pool = this->W.Pool;
     std::vector<Piece>& stack = this->W.Stack;
     stack.clear();
@@ -428,9 +415,8 @@ private:
 //   sign: F monotone, as in the general path;
 // - else the piece is split (de Casteljau at 1/2) down to the tolerance, where a piece
 //   that still may hold a zero is a root (tangent without a sign change).
-// The slack covers rounding: 1e-12 relative per factor as the general path's, r compared
-// to 1e-9 relative, and the error each piece inherits from the product's terms and the
-// splits above it (an absolute amount, which a small piece near a root cannot undercut).
+// The slack covers rounding as the general path's does: 1e-12 relative per factor, and
+// r compared to 1e-9 relative.
 constexpr int FastDegree = 48;
 
 // The single root of phi in [a, b] (phi(a) = va, opposite signs at the ends): Newton's
@@ -653,31 +639,24 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   }
   const double rslack = 1e-9 * std::fabs(rs);
   const double fslack = 1e-12 * (factors + 1);
-  // Rounding. A piece's coefficients carry the error of the product's convolution (at
-  // most 4·degree·u times `magnitude`, the terms' size, u = 2^-52) and of each de
-  // Casteljau split above it (at most degree·u times the largest coefficient, which
-  // bounds every later one): `inherited` + depth·`perSplit`, whatever the piece's own
-  // size, plus the relative slack of its own size. Where the terms cancel by more than
-  // that relative slack covers at the start (many factors over a long segment, say 20
-  // atom spheres across 13 Å, whose terms reach 1e30 times the product), the pieces
-  // near the roots could never be decided: the general path works instead, with each
-  // factor's hull (no cancellation between factors).
+  // The slack below is relative to each piece's own coefficients, while their rounding
+  // comes from the convolution's terms, up to `magnitude`: where those cancel by more
+  // than the slack covers (many factors over a long segment, say 20 atom spheres across
+  // 13 Å, whose terms reach 1e30 times the product), the general path decides instead,
+  // with each factor's hull (no cancellation between factors). (Below that, a piece
+  // deep near a root still inherits the top level's absolute rounding, which its
+  // relative slack does not bound; an absolute floor, with the pieces it leaves
+  // undecided handed to the general path, split the chains of tiny pieces at double
+  // roots into several hits: not kept.)
   double largest = 0.0;
   for (int k = 0; k < n; ++k)
   {
     largest = std::max(largest, std::fabs(pool[k] + rs));
   }
-  const double inherited = 4.0 * degree * 0x1p-52 * magnitude;
-  if (!(inherited <= fslack * largest))
+  if (!(4.0 * degree * 0x1p-52 * magnitude <= fslack * largest))
   {
     return false;
   }
-  double top = 0.0;
-  for (int k = 0; k < n; ++k)
-  {
-    top = std::max(top, std::fabs(pool[k]));
-  }
-  const double perSplit = 2.0 * degree * 0x1p-52 * top;
   const double* scaled = w.Scaled.data();
   auto phid = [&](double t, double& derivative) {
     double v = 1.0, dv = 0.0;
@@ -713,9 +692,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       lo = std::min(lo, f[k]);
       hi = std::max(hi, f[k]);
     }
-    const double floor = inherited + p.Depth * perSplit;
-    const double slack =
-      fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + floor + 1e-300;
+    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + 1e-300;
     if (lo > slack || hi < -slack)
     {
       continue; // no root in this piece
@@ -768,20 +745,6 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       {
         cluster.Add(va == 0.0 ? p.A : p.B, false, va, vb);
       }
-      if (!options.AllRoots && !roots.empty())
-      {
-        return true;
-      }
-      continue;
-    }
-    if (std::max(std::fabs(lo), std::fabs(hi)) <= 1e6 * floor)
-    {
-      // Neither monotone nor one-signed, and its values near the rounding the product
-      // form carries (a thin gap between two factors' zeros, a multiple root): the
-      // general path, whose factors each keep their own accuracy, decides the whole
-      // piece (in one go, so that a chain of undecided tiny pieces stays one root).
-      Solver(coefficients, counts, factors, r, options, GeneralWorkspace())
-        .Run(p.A, p.B, cluster, roots);
       if (!options.AllRoots && !roots.empty())
       {
         return true;
@@ -841,7 +804,8 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     return true;
   }
   roots.clear();
-  Solver(coefficients, counts, factors, r, options, GeneralWorkspace()).Run(t0, t1, roots);
+  thread_local Workspace workspace;
+  Solver(coefficients, counts, factors, r, options, workspace).Run(t0, t1, roots);
   return true;
 }
 
