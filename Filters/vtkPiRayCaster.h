@@ -65,16 +65,13 @@
  * `PiMoleculeRadii`, `PiMoleculeSettings`) is cast at its own field instead, in either
  * mode and at any size (pisurf::MoleculeField::CastRay): the ray is cut at the field's
  * 2 Å cells, each piece enclosed from the atoms near its cell (restricted exactly to
- * the ray) and, in Global mode, the far atoms' certified Taylor bound, with the same
+ * the ray) and, in Global mode, the far atoms' certified Taylor bound, and its
+ * derivative likewise (a monotone piece holds one root at most), with the same
  * guarantees (every root to 1e-10 of the size, tangent roots flagged) at a cost per
  * ray that does not grow with the molecule (1ubq Global at 256² six views: 0.8 s of CPU;
  * the product path took 45 s). Its `Factor` is the atom whose sphere is nearest the hit,
  * and `Singular` uses the field's far-field values, which lie within their bound of
- * the exact ones (a borderline hit may be classified differently). Its enclosures are
- * first-order (no monotonicity test yet): next to a crossing of a blended surface a
- * piece a few tolerances wide can stay undecided, and all-hits mode then lists it as an
- * extra Tangent hit within about 1e-8 of the real one (a few in 10^4 hits on small
- * molecules at r = 1 or 30; none at r = 0.01; first hits are unaffected). The molecule's
+ * the exact ones (a borderline hit may be classified differently). The molecule's
  * arrays pass to the output's field data. vtkPiImageTriangulator needs a
  * `PiSurfaceModel` (Global, up to 10 000 atoms).
  *

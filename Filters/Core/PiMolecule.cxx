@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 
 namespace pisurf
@@ -1759,6 +1760,130 @@ struct MoleculeField::RaySearch
     return P.Compare(this->Level);
   }
 
+  // Whether F is strictly monotone on [a, b]: an enclosure of F' = E·(Σ_i g_i' Π_{j≠i} g_j
+  // + P·L') excludes 0, with E = e^L > 0 the far field (Global; L' within T' ± B' where
+  // B' = 3B/h bounds the Taylor remainder's slope as B its value, h the cell's
+  // half-diagonal, which is conservative for the supercell's part) and each g_i' by
+  // interval arithmetic (Global: f_i' = 2A·s + B; Local: dg/df·f_i' with dg/df =
+  // w + (f − 1)·w'(u)/(ρ² − R²)). Only the atoms that matter on the piece are given.
+  bool Monotone(double a, double b, const std::vector<Atom>& atoms, const int* list, size_t count,
+    bool far) const
+  {
+    const double s0 = a - this->Mid, s1 = b - this->Mid;
+    const double sm = std::max(std::fabs(s0), std::fabs(s1));
+    std::vector<double>& g = this->Intervals;
+    g.resize(4 * count);
+    size_t n = 0;
+    for (size_t k = 0; k < count; ++k)
+    {
+      const Atom& q = atoms[list[k]];
+      double lo, hi;
+      QuadraticRange(q.A, q.B, q.C, s0, s1, lo, hi);
+      const double slack = 1e-14 * (q.A * sm * sm + std::fabs(q.B) * sm + std::fabs(q.C)) +
+        1e-12 * std::max(std::fabs(lo), std::fabs(hi));
+      lo -= slack;
+      hi += slack;
+      double d0 = 2.0 * q.A * s0 + q.B, d1 = 2.0 * q.A * s1 + q.B; // f' (increasing in s)
+      const double ds = 1e-14 * (std::fabs(d0) + std::fabs(d1) + std::fabs(q.B)) + 1e-300;
+      d0 -= ds;
+      d1 += ds;
+      double g0 = lo, g1 = hi;
+      if (this->Local)
+      {
+        if (lo >= q.Span)
+        {
+          continue; // g = 1 on the piece: g' = 0
+        }
+        const double u0 = std::min(1.0, std::max(0.0, lo * q.InverseSpan));
+        const double u1 = std::min(1.0, std::max(0.0, hi * q.InverseSpan));
+        const double w0 = std::max(0.0, WeightPolynomial(u1) - 1e-14);
+        const double w1 = std::min(1.0, WeightPolynomial(u0) + 1e-14);
+        const double m0 = lo - 1.0, m1 = hi - 1.0;
+        g0 = 1.0 + (m0 < 0 ? m0 * w1 : m0 * w0);
+        g1 = 1.0 + (m1 > 0 ? m1 * w1 : m1 * w0);
+        const double gs = 1e-14 * (1.0 + std::max(std::fabs(g0), std::fabs(g1)));
+        g0 -= gs;
+        g1 += gs;
+        // w'(u) = −30 u²(1 − u)² on [u0, u1]: 0 at both ends of [0, 1], −1.875 at 1/2.
+        auto slope = [](double u) { return -30.0 * u * u * (1.0 - u) * (1.0 - u); };
+        double p0 = std::min(slope(u0), slope(u1)), p1 = std::max(slope(u0), slope(u1));
+        if (u0 < 0.5 && u1 > 0.5)
+        {
+          p0 = -1.875;
+        }
+        p0 = p0 * q.InverseSpan - 1e-14;
+        p1 = p1 * q.InverseSpan + 1e-14;
+        // dg/df = w + (f − 1)·w'/(ρ² − R²), then times f'.
+        const double c[4] = { m0 * p0, m0 * p1, m1 * p0, m1 * p1 };
+        const double e0 = w0 + std::min({ c[0], c[1], c[2], c[3] });
+        const double e1 = w1 + std::max({ c[0], c[1], c[2], c[3] });
+        const double c2[4] = { e0 * d0, e0 * d1, e1 * d0, e1 * d1 };
+        d0 = std::min({ c2[0], c2[1], c2[2], c2[3] });
+        d1 = std::max({ c2[0], c2[1], c2[2], c2[3] });
+        const double es = 1e-12 * (std::fabs(d0) + std::fabs(d1)) + 1e-300;
+        d0 -= es;
+        d1 += es;
+      }
+      g[4 * n] = g0;
+      g[4 * n + 1] = g1;
+      g[4 * n + 2] = d0;
+      g[4 * n + 3] = d1;
+      ++n;
+    }
+    // Σ_i g_i' Π_{j≠i} g_j with prefix and suffix products (scaled), then + P·L'.
+    std::vector<ScaledRange>& prefix = this->Prefix;
+    std::vector<ScaledRange>& suffix = this->Suffix;
+    prefix.assign(n + 1, ScaledRange());
+    suffix.assign(n + 1, ScaledRange());
+    for (size_t i = 0; i < n; ++i)
+    {
+      prefix[i + 1] = prefix[i];
+      prefix[i + 1].Multiply(g[4 * i], g[4 * i + 1]);
+    }
+    for (size_t i = n; i > 0; --i)
+    {
+      suffix[i - 1] = suffix[i];
+      suffix[i - 1].Multiply(g[4 * (i - 1)], g[4 * (i - 1) + 1]);
+    }
+    std::vector<ScaledRange>& terms = this->Terms;
+    terms.clear();
+    for (size_t i = 0; i < n; ++i)
+    {
+      ScaledRange t = prefix[i];
+      t.Multiply(g[4 * i + 2], g[4 * i + 3]);
+      t.Multiply(suffix[i + 1].Lo, suffix[i + 1].Hi);
+      t.E += suffix[i + 1].E;
+      terms.push_back(t);
+    }
+    if (far && this->HasFar)
+    {
+      // L' = T1 + 2·T2·s ± B'·|d|.
+      const double l0 = this->T1 + 2.0 * this->T2 * s0, l1 = this->T1 + 2.0 * this->T2 * s1;
+      const double h = 0.5 * std::sqrt(3.0) * this->M.Settings.CellSize;
+      const double norm = std::sqrt(this->D[0] * this->D[0] + this->D[1] * this->D[1] + this->D[2] * this->D[2]);
+      const double slack = 3.0 * this->Bound / h * norm + 1e-13 * (std::fabs(l0) + std::fabs(l1)) + 1e-13;
+      ScaledRange t = prefix[n];
+      t.Multiply(std::min(l0, l1) - slack, std::max(l0, l1) + slack);
+      terms.push_back(t);
+    }
+    long top = std::numeric_limits<long>::min();
+    for (const ScaledRange& t : terms)
+    {
+      top = std::max(top, t.E);
+    }
+    double lo = 0.0, hi = 0.0;
+    for (const ScaledRange& t : terms)
+    {
+      const int shift = static_cast<int>(std::max<long>(t.E - top, -2000));
+      lo += std::ldexp(t.Lo, shift);
+      hi += std::ldexp(t.Hi, shift);
+    }
+    const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
+    return !terms.empty() && (lo - slack > 0.0 || hi + slack < 0.0);
+  }
+  mutable std::vector<double> Intervals;
+  mutable std::vector<ScaledRange> Prefix, Suffix, Terms;
+
   // F's value at t (exact sign: the field's evaluation).
   double At(double t) const
   {
@@ -1803,6 +1928,23 @@ struct MoleculeField::RaySearch
         p.Depth < this->Options.MaximumDepth &&
         this->Isolate(p, atoms, pool.data() + p.Offset, far, straddler))
       {
+        continue;
+      }
+      if (p.B - p.A > this->Options.Tolerance &&
+        this->Monotone(p.A, p.B, atoms, pool.data() + p.Offset, p.Count, far))
+      {
+        // One root at most: where F changes sign between the ends.
+        const double va = this->At(p.A), vb = this->At(p.B);
+        if ((va < 0 && vb > 0) || (va > 0 && vb < 0))
+        {
+          const double t = BracketedRoot([this](double x) { return this->At(x); }, p.A, p.B, va,
+            vb, this->Options.Tolerance, 0.0);
+          this->Cluster.Add(t, false, va, vb);
+        }
+        else if (va == 0.0 || vb == 0.0)
+        {
+          this->Cluster.Add(va == 0.0 ? p.A : p.B, false, va, vb);
+        }
         continue;
       }
       if (p.B - p.A <= this->Options.Tolerance || p.Depth >= this->Options.MaximumDepth)

@@ -117,9 +117,11 @@ public:
   /// from its cell's atoms, each restricted exactly to the ray (f_i(t) is a quadratic:
   /// its exact range, and in Local mode g_i's by interval arithmetic on f_i, w(u) and
   /// f_i − 1), times the cell's far field (Global: e^(T(t) ± B), T's exact range). A
-  /// piece whose enclosure excludes the level has no root; the others are halved down to
-  /// the tolerance, where a piece is a root (a crossing if F changes sign across it, else
-  /// Tangent), adjacent ones merged (RootCluster). Where only the far field's bound B
+  /// piece whose enclosure excludes the level has no root; one whose derivative's
+  /// enclosure excludes 0 holds one root at most, found by regula falsi where F changes
+  /// sign; the others are halved down to the tolerance, where a piece is a root (a
+  /// crossing if F changes sign across it, else Tangent), adjacent ones merged
+  /// (RootCluster). Where only the far field's bound B
   /// keeps a piece undecided, every atom enters exactly instead. Local mode drops an
   /// atom from a piece's halves once its influence no longer reaches the piece.
   void CastRay(const double o[3], const double d[3], double t0, double t1,
