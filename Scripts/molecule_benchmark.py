@@ -5,7 +5,12 @@ vtkGaussianSplatter / vtkCheckerboardSplatter + vtkFlyingEdges3D on the same gri
 Rows: 1ubq Global at 0.5 A; 1a0q (3301 atoms) Local at 0.25 A; synthetic clusters of
 copies of ubiquitin (1ubq without waters, 602 atoms, copies on a 40 A lattice, each
 rotated) Local at 0.5 A, from ~10^3 to ~10^5 atoms (Global too up to ~10^4). Run with pvpython (the plugin's
-Python package on PYTHONPATH); threads: both vtkSMPTools backends."""
+Python package on PYTHONPATH); threads: both vtkSMPTools backends.
+
+Then Pi Ray Cast downstream of the molecular surface: the molecule path (the field rebuilt
+from PiMoleculeCenters/Radii/Settings, MoleculeField::CastRay) against the product path
+(the same output without PiMoleculeSettings: the PiSurfaceModel product of every atom)
+where the latter is affordable, and alone on the large cases."""
 import math
 import sys
 import time
@@ -15,7 +20,7 @@ from vtkmodules.vtkCommonCore import vtkPoints, vtkSMPTools, vtkDoubleArray
 from vtkmodules.vtkCommonDataModel import vtkMolecule, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkImagingHybrid import vtkGaussianSplatter, vtkCheckerboardSplatter
-from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
+from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface, vtkPiRayCaster
 
 DATA = '/usr/share/freesasa/test-data/'
 # exp(-5 d^2 / 3.5^2) = 0.3 at d = 1.72 A: a lone atom gets about a carbon's vdW radius.
@@ -132,5 +137,56 @@ def main():
             sys.stdout.flush()
 
 
+def cast(surface_output, view, n, molecule=True):
+    data = surface_output
+    if not molecule:
+        data = vtkPolyData()
+        data.ShallowCopy(surface_output)
+        fd = type(surface_output.GetFieldData())()
+        fd.DeepCopy(surface_output.GetFieldData())
+        fd.RemoveArray('PiMoleculeSettings')
+        data.SetFieldData(fd)
+    c = vtkPiRayCaster()
+    c.SetInputData(data)
+    c.SetViewMode(view)
+    c.SetResolution(n, n)
+    t = time.perf_counter()
+    c.Update()
+    return time.perf_counter() - t, c.GetOutput().GetNumberOfPoints()
+
+
+def rays(quick):
+    ubq = read('1ubq.pdb')
+    big = cluster(ubq, 16 if quick else 166)
+    six, minus_z = 6, 0  # vtkPiRayCaster::SIX_AXIS_VIEWS, MINUS_Z
+    cases = [('1ubq', ubq, 0, six, 64, True), ('1ubq', ubq, 0, six, 512, False),
+             ('1ubq', ubq, 1, six, 512, False),
+             ('%d x 1ubq' % (16 if quick else 166), big, 1, minus_z, 512, False)]
+    print()
+    print('| molecule | atoms | mode | views | pixels | backend | molecule path | rays/s | product path | ratio | hits |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|')
+    for name, m, mode, view, n, compare in cases:
+        f = vtkPiMoleculeSurface()
+        f.SetInputData(m)
+        f.SetMode(mode)
+        f.SetSpacing(0.5)
+        f.Update()
+        out = f.GetOutput()
+        for backend in ['Sequential', 'STDThread']:
+            vtkSMPTools.SetBackend(backend)
+            tm, hits = cast(out, view, n)
+            views = 6 if view == six else 1
+            product, ratio = '-', '-'
+            if compare:
+                tp, hp = cast(out, view, n, molecule=False)
+                product, ratio = '%.2f s (%d hits)' % (tp, hp), '%.1fx' % (tp / tm)
+            print('| %s | %d | %s | %s | %d² | %s | %.2f s | %.2f M | %s | %s | %d |' % (
+                name, m.GetNumberOfAtoms(), 'Global' if mode == 0 else 'Local',
+                'six axis' if view == six else '-Z', n, backend, tm, views * n * n / tm / 1e6,
+                product, ratio, hits))
+            sys.stdout.flush()
+
+
 if __name__ == '__main__':
     main()
+    rays('--quick' in sys.argv)
