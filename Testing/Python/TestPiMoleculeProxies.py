@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The molecule proxies through pvpython: Pi Molecule Reader -> Molecular Pi Surface,
-their XML defaults equal to the C++ defaults, ParaView's PDB reader as input, and the
-area of the paper's formic acid against freesasa (union of the same spheres)."""
+their XML defaults equal to the C++ defaults, Pi Ray Cast on the Local surface,
+ParaView's PDB reader as input, and the area of the paper's formic acid against freesasa
+(union of the same spheres)."""
 import os
 import shutil
 import subprocess
@@ -47,6 +48,24 @@ check(mesh.GetFieldData().GetAbstractArray('PiSurfaceModel') is not None, 'PiSur
 surface.Mode = 'Local'
 surface.UpdatePipeline()
 check(servermanager.Fetch(surface).GetNumberOfCells() > 50000, '1ubq Local mesh')
+
+# Pi Ray Cast downstream of the Local surface (no polynomial model: the molecule's own
+# field): the -Z view's first hits cover the protein's silhouette, each on the mesh.
+rays = PiRayCast(Input=surface, ViewMode='-Z', Resolution=[96, 96])
+rays.UpdatePipeline()
+cloud = servermanager.Fetch(rays)
+check(cloud.GetNumberOfPoints() > 2000, 'Pi Ray Cast on the Local molecular surface')
+local = servermanager.Fetch(surface)
+from vtkmodules.vtkCommonDataModel import vtkStaticPointLocator
+locator = vtkStaticPointLocator()
+locator.SetDataSet(local)
+locator.BuildLocator()
+worst = 0.0
+for k in range(cloud.GetNumberOfPoints()):
+    p = cloud.GetPoint(k)
+    q = local.GetPoint(locator.FindClosestPoint(p))
+    worst = max(worst, sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5)
+check(worst < 0.5, 'ray hits on the Local mesh (worst %.3f A)' % worst)
 
 # ParaView's stock PDB reader (polydata with atom_type and radius).
 stock = PDBReader(FileName=data + '1ubq.pdb')
