@@ -166,6 +166,13 @@ struct Workspace
   double Scratch[MaxDegree + 1];
 };
 
+// The general path's buffers of this thread.
+Workspace& GeneralWorkspace()
+{
+  thread_local Workspace workspace;
+  return workspace;
+}
+
 class Solver
 {
 public:
@@ -323,6 +330,12 @@ public:
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
   {
     RootCluster cluster(roots, this->Options.Tolerance);
+    this->Run(t0, t1, cluster, roots);
+  }
+
+  // The same, adding to a cluster the caller shares (the fast path hands pieces over).
+  void Run(double t0, double t1, RootCluster& cluster, std::vector<RayRoot>& roots)
+  {
     std::vector<double>& pool = this->W.Pool;
     std::vector<Piece>& stack = this->W.Stack;
     stack.clear();
@@ -415,8 +428,8 @@ private:
 //   sign: F monotone, as in the general path;
 // - else the piece is split (de Casteljau at 1/2) down to the tolerance, where a piece
 //   that still may hold a zero is a root (tangent without a sign change).
-// The slack covers rounding as the general path's does: 1e-12 relative per factor, and
-// r compared to 1e-9 relative.
+// The slack covers rounding: 1e-12 relative per factor as the general path's, r compared
+// to 1e-9 relative, and the product's own rounding as an absolute floor (see below).
 constexpr int FastDegree = 48;
 
 // The single root of phi in [a, b] (phi(a) = va, opposite signs at the ends): Newton's
@@ -511,11 +524,16 @@ struct FastWorkspace
   }
 };
 
-// Returns false when the fast path does not apply (the caller then takes the general
-// one): total degree above FastDegree, a factor identically zero on the segment, or a
-// scale that leaves the double range.
+// Levels of re-expansion (see below), each with its own buffers.
+constexpr int FastLevels = 4;
+
+// Returns false, before adding any root, when the fast path does not apply (the caller
+// then takes the general one): total degree above FastDegree, a factor identically zero
+// on the segment, a scale that leaves the double range, or terms that cancel beyond its
+// slack. Roots go to `cluster` (shared with the re-expansions of its pieces).
 bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r,
-  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
+  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots,
+  RootCluster& cluster, int level)
 {
   int degree = 0, total = 0;
   for (int i = 0; i < factors; ++i)
@@ -527,7 +545,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   {
     return false;
   }
-  thread_local FastWorkspace w;
+  thread_local FastWorkspace spaces[FastLevels];
+  FastWorkspace& w = spaces[level];
   const int n = degree + 1;
   // The product in scaled (binomially weighted) Bernstein form, factor by factor.
   // (the product and the next one alternate between two buffers)
@@ -537,9 +556,12 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   product[0] = 1.0;
   int current = 0; // degree of the product so far
   long exponent = 0;
-  // Π_i Σ_k |weighted Bernstein coefficient of factor i|: bounds the sum of the absolute
-  // values of the terms of every product coefficient, so its rounding (see below).
-  double magnitude = 1.0;
+  // The same convolution of the coefficients' absolute values: the size of the terms
+  // each product coefficient sums, which bounds its rounding (see below).
+  double absBuffers[2][FastDegree + 1];
+  double* absProduct = absBuffers[0];
+  double* absNext = absBuffers[1];
+  absProduct[0] = 1.0;
   w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
@@ -590,13 +612,10 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     exponent += e;
     const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
-    double absolute = 0.0;
     for (int k = 0; k < count; ++k)
     {
       bern[k] *= scale;
-      absolute += std::fabs(bern[k]);
     }
-    magnitude *= absolute;
     for (int k = 0; k < count; ++k)
     {
       w.Scaled[offset + k] = coefficients[offset + k] * scale;
@@ -606,15 +625,18 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     // the one before)
     for (int k = 0; k <= current + d; ++k)
     {
-      double sum = 0.0;
+      double sum = 0.0, absolute = 0.0;
       for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
       {
         sum += product[k - b] * bern[b];
+        absolute += absProduct[k - b] * std::fabs(bern[b]);
       }
       next[k] = sum;
+      absNext[k] = absolute;
     }
     current += d;
     std::swap(product, next);
+    std::swap(absProduct, absNext);
   }
   double rs = 0.0;
   if (r != 0.0)
@@ -639,21 +661,25 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   }
   const double rslack = 1e-9 * std::fabs(rs);
   const double fslack = 1e-12 * (factors + 1);
-  // The slack below is relative to each piece's own coefficients, while their rounding
-  // comes from the convolution's terms, up to `magnitude`: where those cancel by more
-  // than the slack covers (many factors over a long segment, say 20 atom spheres across
-  // 13 Å, whose terms reach 1e30 times the product), the general path decides instead,
-  // with each factor's hull (no cancellation between factors). (Below that, a piece
-  // deep near a root still inherits the top level's absolute rounding, which its
-  // relative slack does not bound; an absolute floor, with the pieces it leaves
-  // undecided handed to the general path, split the chains of tiny pieces at double
-  // roots into several hits: not kept.)
-  double largest = 0.0;
+  // Rounding: every coefficient of the product carries the error of its convolution, at
+  // most 2·(degree + factors)·u (u = 2^-52) times the sum of its terms' absolute values
+  // (`rounding`, the largest over the coefficients; the de Casteljau splits then only
+  // average, adding rounding relative to what they average). Every piece inherits it,
+  // however small its own values: it enters each piece's slack as an absolute floor.
+  // Where it exceeds even the top level's relative slack (the terms cancel by 1e30, as
+  // with 20 atom spheres across 13 Å), the general path decides the whole segment, factor
+  // by factor, each accurate to its own size; a piece that only this floor leaves
+  // undecided, its values within 1e3 times it, is expanded afresh (below). Where the
+  // relative slack dominates (the chains of tiny pieces at a double root) nothing
+  // changes, so such a chain stays one root whatever the segment.
+  double largest = 0.0, rounding = 0.0;
   for (int k = 0; k < n; ++k)
   {
     largest = std::max(largest, std::fabs(pool[k] + rs));
+    rounding = std::max(rounding, absProduct[k] / w.Binomial[degree][k]);
   }
-  if (!(4.0 * degree * 0x1p-52 * magnitude <= fslack * largest))
+  rounding *= 2.0 * (degree + factors) * 0x1p-52;
+  if (!(rounding <= fslack * largest))
   {
     return false;
   }
@@ -676,7 +702,6 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     derivative = dv;
     return v - rs;
   };
-  RootCluster cluster(roots, options.Tolerance);
   stack.clear();
   stack.push_back({ t0, t1, 0, 0 });
   while (!stack.empty())
@@ -692,7 +717,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       lo = std::min(lo, f[k]);
       hi = std::max(hi, f[k]);
     }
-    const double slack = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack + 1e-300;
+    const double relative = fslack * (std::max(std::fabs(lo + rs), std::fabs(hi + rs))) + rslack;
+    const double slack = relative + rounding + 1e-300;
     if (lo > slack || hi < -slack)
     {
       continue; // no root in this piece
@@ -751,6 +777,25 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       }
       continue;
     }
+    if (rounding > relative && std::max(std::fabs(lo), std::fabs(hi)) <= 1e3 * rounding)
+    {
+      // Undecided for the rounding this expansion carries, its values near it (two
+      // factors' zeros a hair apart): the product expanded afresh on the piece,
+      // whose terms are the piece's own size, decides it (the general path if that
+      // cannot or after FastLevels expansions).
+      if (!(level + 1 < FastLevels &&
+            FastRayRoots(coefficients, counts, factors, r, p.A, p.B, options, roots, cluster,
+              level + 1)))
+      {
+        Solver(coefficients, counts, factors, r, options, GeneralWorkspace())
+          .Run(p.A, p.B, cluster, roots);
+      }
+      if (!options.AllRoots && !roots.empty())
+      {
+        return true;
+      }
+      continue;
+    }
     if (p.B - p.A <= options.Tolerance || p.Depth >= options.MaximumDepth)
     {
       cluster.Add(0.5 * (p.A + p.B), !change, va, vb);
@@ -799,13 +844,15 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     }
   }
   roots.clear();
-  if (FastRayRoots(coefficients, counts, factors, r, t0, t1, options, roots))
   {
-    return true;
+    RootCluster cluster(roots, options.Tolerance);
+    if (FastRayRoots(coefficients, counts, factors, r, t0, t1, options, roots, cluster, 0))
+    {
+      return true;
+    }
   }
   roots.clear();
-  thread_local Workspace workspace;
-  Solver(coefficients, counts, factors, r, options, workspace).Run(t0, t1, roots);
+  Solver(coefficients, counts, factors, r, options, GeneralWorkspace()).Run(t0, t1, roots);
   return true;
 }
 
