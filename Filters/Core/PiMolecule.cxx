@@ -1701,6 +1701,40 @@ struct MoleculeField::RaySearch
   // Of the last Enclose: how many factors may vanish on the piece, and the last of them.
   mutable int Straddling = 0, Straddler = -1;
 
+  // f's range over [s0, s1] (sm = max |s|), widened by its rounding: of the terms (a few
+  // ulps of their magnitude) and of the result.
+  static void FactorRange(const Atom& q, double s0, double s1, double sm, double& lo, double& hi)
+  {
+    QuadraticRange(q.A, q.B, q.C, s0, s1, lo, hi);
+    const double slack = 1e-14 * (q.A * sm * sm + std::fabs(q.B) * sm + std::fabs(q.C)) +
+      1e-12 * std::max(std::fabs(lo), std::fabs(hi));
+    lo -= slack;
+    hi += slack;
+  }
+
+  // Local: g = 1 + (f − 1)·w(u), u = f/(ρ² − R²) clamped to [0, 1], w decreasing from 1
+  // to 0 (g = f inside the sphere, where u = 0), enclosed from f's range [lo, hi] by
+  // interval arithmetic on each part; with u's and w's ranges.
+  struct LocalRange
+  {
+    double G0, G1, U0, U1, W0, W1;
+  };
+  static LocalRange LocalFactorRange(const Atom& q, double lo, double hi)
+  {
+    LocalRange r;
+    r.U0 = std::min(1.0, std::max(0.0, lo * q.InverseSpan));
+    r.U1 = std::min(1.0, std::max(0.0, hi * q.InverseSpan));
+    r.W0 = std::max(0.0, WeightPolynomial(r.U1) - 1e-14);
+    r.W1 = std::min(1.0, WeightPolynomial(r.U0) + 1e-14);
+    const double m0 = lo - 1.0, m1 = hi - 1.0;
+    r.G0 = 1.0 + (m0 < 0 ? m0 * r.W1 : m0 * r.W0);
+    r.G1 = 1.0 + (m1 > 0 ? m1 * r.W1 : m1 * r.W0);
+    const double gs = 1e-14 * (1.0 + std::max(std::fabs(r.G0), std::fabs(r.G1)));
+    r.G0 -= gs;
+    r.G1 += gs;
+    return r;
+  }
+
   int Enclose(double a, double b, const std::vector<Atom>& atoms, const int* list, size_t count,
     bool far, bool bound, std::vector<int>* keep) const
   {
@@ -1712,12 +1746,7 @@ struct MoleculeField::RaySearch
     {
       const Atom& q = atoms[list[k]];
       double lo, hi;
-      QuadraticRange(q.A, q.B, q.C, s0, s1, lo, hi);
-      // Rounding: of the terms (about a few ulps of their magnitude) and of the result.
-      const double slack = 1e-14 * (q.A * sm * sm + std::fabs(q.B) * sm + std::fabs(q.C)) +
-        1e-12 * std::max(std::fabs(lo), std::fabs(hi));
-      lo -= slack;
-      hi += slack;
+      FactorRange(q, s0, s1, sm, lo, hi);
       if (lo <= 0.0 && hi >= 0.0)
       {
         ++this->Straddling;
@@ -1729,17 +1758,8 @@ struct MoleculeField::RaySearch
         {
           continue; // beyond ρ on the whole piece: g = 1
         }
-        // g = 1 + (f − 1)·w(u), u = f/(ρ² − R²) clamped to [0, 1], w decreasing from 1
-        // to 0 (g = f inside the sphere, where u = 0): interval arithmetic on each part.
-        const double u0 = std::min(1.0, std::max(0.0, lo * q.InverseSpan));
-        const double u1 = std::min(1.0, std::max(0.0, hi * q.InverseSpan));
-        const double w0 = std::max(0.0, WeightPolynomial(u1) - 1e-14);
-        const double w1 = std::min(1.0, WeightPolynomial(u0) + 1e-14);
-        const double m0 = lo - 1.0, m1 = hi - 1.0;
-        const double g0 = 1.0 + (m0 < 0 ? m0 * w1 : m0 * w0);
-        const double g1 = 1.0 + (m1 > 0 ? m1 * w1 : m1 * w0);
-        const double gs = 1e-14 * (1.0 + std::max(std::fabs(g0), std::fabs(g1)));
-        P.Multiply(g0 - gs, g1 + gs);
+        const LocalRange g = LocalFactorRange(q, lo, hi);
+        P.Multiply(g.G0, g.G1);
       }
       else
       {
@@ -1783,11 +1803,7 @@ struct MoleculeField::RaySearch
     {
       const Atom& q = atoms[list[k]];
       double lo, hi;
-      QuadraticRange(q.A, q.B, q.C, s0, s1, lo, hi);
-      const double slack = 1e-14 * (q.A * sm * sm + std::fabs(q.B) * sm + std::fabs(q.C)) +
-        1e-12 * std::max(std::fabs(lo), std::fabs(hi));
-      lo -= slack;
-      hi += slack;
+      FactorRange(q, s0, s1, sm, lo, hi);
       double d0 = 2.0 * q.A * s0 + q.B, d1 = 2.0 * q.A * s1 + q.B; // f' (increasing in s)
       const double ds = 1e-14 * (std::fabs(d0) + std::fabs(d1) + std::fabs(q.B)) + 1e-300;
       d0 -= ds;
@@ -1799,16 +1815,11 @@ struct MoleculeField::RaySearch
         {
           continue; // g = 1 on the piece: g' = 0
         }
-        const double u0 = std::min(1.0, std::max(0.0, lo * q.InverseSpan));
-        const double u1 = std::min(1.0, std::max(0.0, hi * q.InverseSpan));
-        const double w0 = std::max(0.0, WeightPolynomial(u1) - 1e-14);
-        const double w1 = std::min(1.0, WeightPolynomial(u0) + 1e-14);
+        const LocalRange range = LocalFactorRange(q, lo, hi);
+        g0 = range.G0;
+        g1 = range.G1;
+        const double u0 = range.U0, u1 = range.U1, w0 = range.W0, w1 = range.W1;
         const double m0 = lo - 1.0, m1 = hi - 1.0;
-        g0 = 1.0 + (m0 < 0 ? m0 * w1 : m0 * w0);
-        g1 = 1.0 + (m1 > 0 ? m1 * w1 : m1 * w0);
-        const double gs = 1e-14 * (1.0 + std::max(std::fabs(g0), std::fabs(g1)));
-        g0 -= gs;
-        g1 += gs;
         // w'(u) = −30 u²(1 − u)² on [u0, u1]: 0 at both ends of [0, 1], −1.875 at 1/2.
         auto slope = [](double u) { return -30.0 * u * u * (1.0 - u) * (1.0 - u); };
         double p0 = std::min(slope(u0), slope(u1)), p1 = std::max(slope(u0), slope(u1));
