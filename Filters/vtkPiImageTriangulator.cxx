@@ -2,6 +2,7 @@
 #include "vtkPiImageTriangulator.h"
 #include "PiBuffer.h"
 #include "PiEdgeFlips.h"
+#include "PiInputModel.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 #include "PiProduct.h"
@@ -354,7 +355,10 @@ struct Triangulation
   vtkPiImageTriangulator* Algorithm;
   Cloud C;
   std::vector<View> Views;
+  // The model: a product (PiSurfaceModel), or a molecule's field (PiInputModel.h), or
+  // neither (all-hits views need none).
   std::shared_ptr<const pisurf::ProductKernel> Kernel;
+  std::unique_ptr<pisurf::MoleculeField> Molecule;
   std::unique_ptr<pisurf::RayCaster> Caster;
   double Size = 1;
   std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
@@ -381,7 +385,7 @@ struct Triangulation
     double nrm[3] = { 0, 0, 0 }, g = 0;
     c.Nearest = -1;
     c.Singular = false;
-    if (this->Kernel)
+    if (this->Caster)
     {
       c.Singular =
         this->Caster->Attributes(c.P, this->Probe, this->SingularTolerance, nrm, g, c.Nearest);
@@ -395,7 +399,24 @@ struct Triangulation
   int Sign(const double p[3]) const
   {
     double logAbs;
+    if (this->Molecule)
+    {
+      return this->Molecule->Evaluate(p) >= 0 ? 1 : 0;
+    }
     return this->Kernel ? (this->Kernel->EvaluateSignAndLog(p, logAbs) >= 0 ? 1 : 0) : 1;
+  }
+
+  // +1/−1: F has that sign on the whole box; 0: it may vanish there (or no model).
+  int Classify(const double box[6]) const
+  {
+    return this->Kernel ? this->Kernel->ClassifyBox(box)
+                        : this->Molecule ? this->Molecule->ClassifyBox(box) : 1;
+  }
+
+  // sign(F)·ln(1 + |F|) (a model is there).
+  double Compressed(const double p[3]) const
+  {
+    return this->Kernel ? this->Kernel->EvaluateCompressed(p) : this->Molecule->EvaluateCompressed(p);
   }
 
   // RAY_LATTICE ------------------------------------------------------------------
@@ -782,7 +803,7 @@ void Triangulation::RunLattice(const Lattice& L)
     double b[6] = { L.B0[0], L.B1[0], L.B0[1], L.B1[1], L.B0[2], L.B1[2] };
     const int a = f / 2;
     b[2 * a] = b[2 * a + 1] = (f % 2 ? L.B1[a] : L.B0[a]);
-    const int c = this->Kernel ? this->Kernel->ClassifyBox(b) : 1;
+    const int c = this->Classify(b);
     faceSign[f] = c == 0 ? -1 : (c > 0 ? 1 : 0);
   }
   auto nodeSign = [&](int i, int j, int m) {
@@ -937,13 +958,13 @@ void Triangulation::RunLattice(const Lattice& L)
         c.P[0] = p0[0];
         c.P[1] = p0[1];
         c.P[2] = p0[2];
-        if (this->Kernel)
+        if (this->Caster)
         {
           const double x0 = L.X(a, n[a]), x1 = L.X(a, n[a] + 1);
           auto phi = [&](double x) {
             double q[3] = { p0[0], p0[1], p0[2] };
             q[a] = x;
-            return this->Kernel->EvaluateCompressed(q);
+            return this->Compressed(q);
           };
           const double v0 = phi(x0), v1 = phi(x1);
           c.P[a] = (v0 < 0) != (v1 < 0)
@@ -1583,10 +1604,32 @@ int vtkPiImageTriangulator::RequestData(
   }
 
   lap("input unpacked");
-  // The model, when the input carries it (needed for what the views did not see).
+  // The model, when the input carries it (needed for what the views did not see): a
+  // molecule's field (any size, either mode), else the product of PiSurfaceModel.
   auto* json = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
   vtkNew<vtkPiSurface> surface;
-  if (json && json->GetNumberOfValues() > 0)
+  PiMoleculeInput molecule;
+  std::string moleculeError;
+  if (!molecule.Read(input, moleculeError))
+  {
+    vtkErrorMacro(<< moleculeError);
+    return 0;
+  }
+  if (molecule.Present)
+  {
+    try
+    {
+      T.Molecule = std::make_unique<pisurf::MoleculeField>(
+        molecule.Centers, molecule.Radii, molecule.Settings, molecule.Bounds);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      return 0;
+    }
+    T.Caster.reset(new pisurf::RayCaster(*T.Molecule));
+  }
+  else if (json && json->GetNumberOfValues() > 0)
   {
     if (!surface->SetModelJSON(json->GetValue(0)))
     {
@@ -2039,7 +2082,11 @@ int vtkPiImageTriangulator::RequestData(
   output->GetPointData()->AddArray(outSingular);
   output->GetPointData()->AddArray(outView);
   output->GetPointData()->AddArray(outFactor);
-  if (json)
+  if (molecule.Present)
+  {
+    PiMoleculeInput::Forward(input, output);
+  }
+  else if (json)
   {
     output->GetFieldData()->AddArray(json);
   }

@@ -25,7 +25,9 @@
  *   its vertices from the views in proportion to |n·d|, i.e. mostly from the view that
  *   sees it best. First-hit views see only the first crossing from each side; the
  *   crossings they hide (the inside of the cup) are computed with the same certified
- *   root finder on the hidden part of the ray (this needs the input's `PiSurfaceModel`).
+ *   root finder on the hidden part of the ray (this needs the input's `PiSurfaceModel`,
+ *   or the molecule of a Molecular Pi Surface: its field, in either mode and at any
+ *   size, as vtkPiRayCaster uses it).
  *   Limits: a feature that enters and leaves between two lattice nodes on every ray
  *   (thinner than one pixel) has no sign change and is left out; its hits are counted
  *   in the field `UnusedHits`, with tangent hits.
@@ -47,7 +49,7 @@
  * storage when the point and connectivity counts fit (else 64-bit); point data `Normals`
  * (the exact unit gradient), `Singular`,
  * `ViewIndex` (the view whose ray holds the vertex), `Factor`; field data
- * `PiSurfaceModel` (passed on), `BoundaryEdges` (edges used by one triangle: 0 for a
+ * `PiSurfaceModel` or the molecule's arrays (passed on), `BoundaryEdges` (edges used by one triangle: 0 for a
  * closed mesh), `UnusedHits` (hits that are not vertices), both of the whole mesh.
  *
  * Pieces (ParaView's MPI mode): the views are merged and their seams closed across the

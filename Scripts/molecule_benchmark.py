@@ -158,7 +158,7 @@ def cast(surface_output, view, n, molecule=True):
 def rays(quick):
     ubq = read('1ubq.pdb')
     big = cluster(ubq, 16 if quick else 166)
-    six, minus_z = 6, 0  # vtkPiRayCaster::SIX_AXIS_VIEWS, MINUS_Z
+    six, minus_z = vtkPiRayCaster.SIX_AXIS_VIEWS, vtkPiRayCaster.MINUS_Z
     cases = [('1ubq', ubq, 0, six, 64, True), ('1ubq', ubq, 0, six, 512, False),
              ('1ubq', ubq, 1, six, 512, False),
              ('%d x 1ubq' % (16 if quick else 166), big, 1, minus_z, 512, False)]

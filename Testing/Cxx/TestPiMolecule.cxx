@@ -13,6 +13,7 @@
 #include "vtkPDBReader.h"
 #include "vtkPiMoleculeReader.h"
 #include "vtkPiMoleculeSurface.h"
+#include "vtkPiImageTriangulator.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"
 #include "vtkPointData.h"
@@ -141,8 +142,10 @@ int BadFile(const std::string& path, const std::string& text)
 // output without PiMoleculeSettings): six views, all hits; each of its hits matched
 // within about two tolerances, with its Tangent flag, and none extra. (2) 1a0q (3301 atoms) in Local
 // mode, which has no polynomial model: every first hit of the -Z view lies on the mesh
-// of the same field (within one grid spacing of its exact vertices). (3) A malformed
-// PiMoleculeSettings is an error.
+// of the same field (within one grid spacing of its exact vertices), and the Image
+// Based Triangulation of its first-hit six views is closed, with the area of all the
+// mesher's sheets (within -20 % for the sheets thinner than a pixel, +5 %). (3) A
+// malformed PiMoleculeSettings is an error.
 int RayCastDownstream()
 {
   int failures = 0;
@@ -259,6 +262,38 @@ int RayCastDownstream()
     {
       std::cerr << "  a hit lies " << worst << " A from the mesh\n";
     }
+    // Image Based Triangulation of first-hit six views: the parts they hide come from
+    // the same field (Local mode has no PiSurfaceModel: refused before): closed, with
+    // the area of the mesher's sheets.
+    vtkNew<vtkPiRayCaster> six;
+    six->SetInputData(mesh);
+    six->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
+    six->SetResolution(96, 96);
+    vtkNew<vtkPiImageTriangulator> triangulator;
+    triangulator->SetInputConnection(six->GetOutputPort());
+    triangulator->Update();
+    vtkPolyData* triangles = triangulator->GetOutput();
+    vtkDataArray* boundary = triangles->GetFieldData()->GetArray("BoundaryEdges");
+    PI_CHECK(triangles->GetNumberOfCells() > 20000);
+    PI_CHECK(boundary && boundary->GetComponent(0, 0) == 0);
+    vtkNew<vtkMassProperties> area;
+    area->SetInputData(triangles);
+    area->Update();
+    vtkNew<vtkPiMoleculeSurface> sheets;
+    sheets->SetInputConnection(reader->GetOutputPort());
+    sheets->SetMode(vtkPiMoleculeSurface::LOCAL);
+    sheets->SetSpacing(0.5);
+    sheets->OuterEnvelopeOff();
+    sheets->Update();
+    const double meshArea = sheets->GetOutput()->GetFieldData()->GetArray("SurfaceArea")->GetComponent(0, 0);
+    // Every sheet of F = 0 (the lens-shaped shells where atoms overlap too), as the
+    // mesher's with OuterEnvelope off; sheets thinner than a pixel are left out.
+    PI_CHECK(area->GetSurfaceArea() > 0.8 * meshArea && area->GetSurfaceArea() < 1.05 * meshArea);
+    if (!(area->GetSurfaceArea() > 0.8 * meshArea && area->GetSurfaceArea() < 1.05 * meshArea))
+    {
+      std::cerr << "  triangulated area " << area->GetSurfaceArea() << ", mesh " << meshArea << "\n";
+    }
+    PI_CHECK(triangles->GetFieldData()->GetArray("PiMoleculeSettings") != nullptr);
     vtkNew<vtkPolyData> bad;
     bad->ShallowCopy(mesh);
     vtkNew<vtkFieldData> fd;
