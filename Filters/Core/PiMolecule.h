@@ -121,9 +121,12 @@ public:
   /// enclosure excludes 0 holds one root at most, found by regula falsi where F changes
   /// sign; the others are halved down to the tolerance, where a piece is a root (a
   /// crossing if F changes sign across it, else Tangent), adjacent ones merged
-  /// (RootCluster). Where only the far field's bound B
-  /// keeps a piece undecided, every atom enters exactly instead. Local mode drops an
-  /// atom from a piece's halves once its influence no longer reaches the piece.
+  /// (RootCluster). Where only the far field's bound B keeps a piece undecided, every
+  /// atom enters exactly instead. Global mode tries a shortcut first: where one sphere
+  /// alone may vanish on a piece, the root is usually within rounding of where the ray
+  /// crosses it (the other factors make the product huge), which enclosures on both
+  /// sides of that crossing certify. Local mode drops an atom from a piece's halves once
+  /// its influence no longer reaches the piece.
   void CastRay(const double o[3], const double d[3], double t0, double t1,
     const RayRootOptions& options, std::vector<RayRoot>& roots) const;
   /// True inside any atom sphere (|p − c_i| < R_i), when the level is positive. On
