@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiSampleFunction);
@@ -86,20 +87,32 @@ int vtkPiSampleFunction::RequestData(
   vtkImageData* output = vtkImageData::GetData(outInfo);
   output->Initialize();
 
-  // The surface: from the input's model, or the one set.
+  // The surface: a molecule's field (Molecular Pi Surface output, any size or mode), else
+  // the input's model, or the one set.
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  const vtkSmartPointer<vtkPiSurface> surface =
-    PiSurfaceOf(vtkDataObject::GetData(inputVector[0], 0), this->PiSurface, error);
-  if (!surface)
+  PiMoleculeInput molecule;
+  if (!molecule.Read(input, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const auto kernel = surface->GetKernel();
-  if (!kernel || kernel->GetNumberOfFactors() == 0)
+  vtkSmartPointer<vtkPiSurface> surface;
+  std::shared_ptr<const pisurf::ProductKernel> kernel;
+  if (!molecule.Present)
   {
-    vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
-    return 0;
+    surface = PiSurfaceOf(input, this->PiSurface, error);
+    if (!surface)
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    kernel = surface->GetKernel();
+    if (!kernel || kernel->GetNumberOfFactors() == 0)
+    {
+      vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
+      return 0;
+    }
   }
   const int* d = this->SampleDimensions;
   if (d[0] < 2 || d[1] < 2 || d[2] < 2)
@@ -119,7 +132,24 @@ int vtkPiSampleFunction::RequestData(
     return 0;
   }
   double b[6];
-  if (!surface->ResolveBounds(this->ModelBounds, b))
+  if (molecule.Present)
+  {
+    if (std::all_of(this->ModelBounds, this->ModelBounds + 6, [](double v) { return v == 0; }))
+    {
+      std::copy(molecule.Bounds, molecule.Bounds + 6, b);
+    }
+    else if (pisurf::ValidBounds(this->ModelBounds))
+    {
+      std::copy(this->ModelBounds, this->ModelBounds + 6, b);
+    }
+    else
+    {
+      vtkErrorMacro(<< "No bounds to sample: bounds must be finite with x0 < x1, y0 < y1, "
+                       "z0 < z1 (or all zero for the molecule's)");
+      return 0;
+    }
+  }
+  else if (!surface->ResolveBounds(this->ModelBounds, b))
   {
     vtkErrorMacro(<< "No bounds to sample: " << surface->GetErrorMessage());
     return 0;
@@ -156,6 +186,20 @@ int vtkPiSampleFunction::RequestData(
   // whole grid's row (so a piece's values have the bits of the whole grid's, and of the
   // mesher's on the same grid), then Horner's rule several points at a time.
   const vtkIdType rows = vtkIdType(ny) * nz;
+  std::unique_ptr<pisurf::MoleculeField> field;
+  if (molecule.Present)
+  {
+    try
+    {
+      field = std::make_unique<pisurf::MoleculeField>(
+        molecule.Centers, molecule.Radii, molecule.Settings, b);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      return 0;
+    }
+  }
   const double step[3] = { spacing[0], 0.0, 0.0 };
   const double mid = 0.5 * (d[0] - 1);
   std::atomic<bool> abort{ false };
@@ -164,6 +208,18 @@ int vtkPiSampleFunction::RequestData(
     for (vtkIdType r = begin; r < end && !abort; ++r)
     {
       const int j = extent[2] + static_cast<int>(r % ny), k = extent[4] + static_cast<int>(r / ny);
+      if (field)
+      {
+        // The molecule's field point by point (its cells hold the atoms near each point),
+        // at the points the mesher would take: origin + index·spacing.
+        for (int i = 0; i < nx; ++i)
+        {
+          const double p[3] = { origin[0] + (extent[0] + i) * spacing[0],
+            origin[1] + j * spacing[1], origin[2] + k * spacing[2] };
+          out[r * nx + i] = field->Evaluate(p);
+        }
+        continue;
+      }
       thread_local std::vector<double> coefficients;
       coefficients.resize(kernel->GetLineCoefficientCount());
       const double middle[3] = { origin[0] + mid * spacing[0], origin[1] + j * spacing[1],

@@ -14,8 +14,12 @@
  *
  * The Pi-surface comes from the input's `PiSurfaceModel` field data (the output of Pi
  * Surface, the model reader, Pi Product, Pi Primitive) when an input is connected,
- * otherwise from SetPiSurface. `SampleDimensions` (default 64³, at least 2 per axis)
- * points span `ModelBounds` (all 0, the default: the model's own bounds, as the mesher
+ * otherwise from SetPiSurface. A molecule (the output of vtkPiMoleculeSurface: field
+ * data `PiMoleculeCenters`, `PiMoleculeRadii`, `PiMoleculeSettings`) is sampled from
+ * its own field instead, in either mode and at any size (pisurf::MoleculeField, point
+ * by point from the atoms near each point: the mesher's values on the mesher's grid).
+ * `SampleDimensions` (default 64³, at least 2 per axis) points span `ModelBounds` (all
+ * 0, the default: the model's own bounds, or the molecule's mesh bounds, as the mesher
  * takes them). Grids above `MaximumNumberOfSamples` (2^28, 2 GiB of doubles) are
  * refused with the memory they would need.
  *

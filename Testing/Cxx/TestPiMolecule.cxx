@@ -14,6 +14,9 @@
 #include "vtkPiMoleculeReader.h"
 #include "vtkPiMoleculeSurface.h"
 #include "vtkPiImageTriangulator.h"
+#include "vtkPiSampleFunction.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkImageData.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"
 #include "vtkPointData.h"
@@ -294,6 +297,30 @@ int RayCastDownstream()
       std::cerr << "  triangulated area " << area->GetSurfaceArea() << ", mesh " << meshArea << "\n";
     }
     PI_CHECK(triangles->GetFieldData()->GetArray("PiMoleculeSettings") != nullptr);
+    // Pi Sample Function samples the same field on the mesher's grid (Local mode has no
+    // PiSurfaceModel: refused before): contoured at 0 by VTK's flying edges, its signs
+    // give exactly the mesher's triangles (all sheets: OuterEnvelope off).
+    vtkDataArray* box = sheets->GetOutput()->GetFieldData()->GetArray("PiMoleculeSettings");
+    int dims[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = static_cast<int>(std::lround(
+                  (box->GetComponent(4 + 2 * a, 0) - box->GetComponent(3 + 2 * a, 0)) /
+                  sheets->GetLastSpacing())) + 1;
+    }
+    vtkNew<vtkPiSampleFunction> sample;
+    sample->SetInputConnection(sheets->GetOutputPort());
+    sample->SetSampleDimensions(dims);
+    vtkNew<vtkFlyingEdges3D> contour;
+    contour->SetInputConnection(sample->GetOutputPort());
+    contour->SetValue(0, 0.0);
+    contour->Update();
+    PI_CHECK(contour->GetOutput()->GetNumberOfCells() == sheets->GetOutput()->GetNumberOfCells());
+    if (contour->GetOutput()->GetNumberOfCells() != sheets->GetOutput()->GetNumberOfCells())
+    {
+      std::cerr << "  sampled field: " << contour->GetOutput()->GetNumberOfCells()
+                << " triangles, the mesher " << sheets->GetOutput()->GetNumberOfCells() << "\n";
+    }
     vtkNew<vtkPolyData> bad;
     bad->ShallowCopy(mesh);
     vtkNew<vtkFieldData> fd;
