@@ -6,8 +6,9 @@
  * Pi Ray Cast and Pi Sample Function take their Pi-surface from their input's field-data
  * string `PiSurfaceModel` (written by Pi Surface, Pi Primitive, Pi Product, the model
  * reader and the molecular surface) when an input is connected, else from the one set
- * on them (SetPiSurface). Pi Ray Cast also takes a molecule, of any size and either mode,
- * from the compact arrays the molecular surface writes (PiMoleculeInput).
+ * on them (SetPiSurface). Pi Ray Cast, Image Based Triangulation and Pi Sample Function
+ * also take a molecule, of any size and either mode, from the compact arrays the
+ * molecular surface writes (PiMoleculeInput), and then work on its own field.
  */
 #ifndef PiInputModel_h
 #define PiInputModel_h
