@@ -15,6 +15,7 @@
 
 #include "PiModel.h"
 #include "PiMolecule.h"
+#include "PiProduct.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
@@ -22,7 +23,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -126,6 +130,41 @@ struct PiMoleculeInput
     return true;
   }
 
+  /// The box to work in: `requested` unless all zero (then the molecule's bounds);
+  /// false with the reason if `requested` is not a valid box.
+  bool ResolveBounds(const double requested[6], double bounds[6], std::string& error) const
+  {
+    if (std::all_of(requested, requested + 6, [](double v) { return v == 0; }))
+    {
+      std::copy(this->Bounds, this->Bounds + 6, bounds);
+      return true;
+    }
+    if (!pisurf::ValidBounds(requested))
+    {
+      error = "bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero for the "
+              "molecule's)";
+      return false;
+    }
+    std::copy(requested, requested + 6, bounds);
+    return true;
+  }
+
+  /// The molecule's field with cells over `region`; null with the reason if it cannot be
+  /// built.
+  std::unique_ptr<pisurf::MoleculeField> MakeField(const double region[6], std::string& error) const
+  {
+    try
+    {
+      return std::make_unique<pisurf::MoleculeField>(
+        this->Centers, this->Radii, this->Settings, region);
+    }
+    catch (const std::exception& e)
+    {
+      error = std::string("Invalid molecule: ") + e.what();
+      return nullptr;
+    }
+  }
+
   /// Passes the three arrays on to `output` (so the molecule reaches further filters).
   static void Forward(vtkDataObject* input, vtkDataObject* output)
   {
@@ -133,6 +172,41 @@ struct PiMoleculeInput
     {
       output->GetFieldData()->AddArray(input->GetFieldData()->GetAbstractArray(name));
     }
+  }
+};
+
+/// What Pi Ray Cast and Pi Sample Function work on: the input's molecule when it
+/// carries one (`Molecule.Present`), else the product of its PiSurfaceModel or the one
+/// set (`Surface`, `Kernel`, with at least one factor).
+struct PiInputSurface
+{
+  PiMoleculeInput Molecule;
+  vtkSmartPointer<vtkPiSurface> Surface;
+  std::shared_ptr<const pisurf::ProductKernel> Kernel;
+
+  /// False with the reason in `error` if there is neither or it is invalid.
+  bool Read(vtkDataObject* input, vtkPiSurface* set, std::string& error)
+  {
+    if (!this->Molecule.Read(input, error))
+    {
+      return false;
+    }
+    if (this->Molecule.Present)
+    {
+      return true;
+    }
+    this->Surface = PiSurfaceOf(input, set, error);
+    if (!this->Surface)
+    {
+      return false;
+    }
+    this->Kernel = this->Surface->GetKernel();
+    if (!this->Kernel || this->Kernel->GetNumberOfFactors() == 0)
+    {
+      error = "The Pi-surface is invalid or has no factors";
+      return false;
+    }
+    return true;
   }
 };
 

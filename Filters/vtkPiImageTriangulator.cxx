@@ -1617,14 +1617,10 @@ int vtkPiImageTriangulator::RequestData(
   }
   if (molecule.Present)
   {
-    try
+    T.Molecule = molecule.MakeField(molecule.Bounds, moleculeError);
+    if (!T.Molecule)
     {
-      T.Molecule = std::make_unique<pisurf::MoleculeField>(
-        molecule.Centers, molecule.Radii, molecule.Settings, molecule.Bounds);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      vtkErrorMacro(<< moleculeError);
       return 0;
     }
     T.Caster.reset(new pisurf::RayCaster(*T.Molecule));

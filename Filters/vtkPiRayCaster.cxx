@@ -521,29 +521,15 @@ int vtkPiRayCaster::RequestData(
   // input's model, or the one set.
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  PiMoleculeInput molecule;
-  if (!molecule.Read(input, error))
+  PiInputSurface in;
+  if (!in.Read(input, this->PiSurface, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  vtkSmartPointer<vtkPiSurface> surface;
-  std::shared_ptr<const pisurf::ProductKernel> kernel;
-  if (!molecule.Present)
-  {
-    surface = PiSurfaceOf(input, this->PiSurface, error);
-    if (!surface)
-    {
-      vtkErrorMacro(<< error);
-      return 0;
-    }
-    kernel = surface->GetKernel();
-    if (!kernel || kernel->GetNumberOfFactors() == 0)
-    {
-      vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
-      return 0;
-    }
-  }
+  const PiMoleculeInput& molecule = in.Molecule;
+  const vtkSmartPointer<vtkPiSurface>& surface = in.Surface;
+  const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   // Orthographic row restriction and the empty-space octree: polynomial products only.
   const bool polynomial = kernel && kernel->IsPolynomial();
   if (this->Resolution[0] < 1 || this->Resolution[1] < 1)
@@ -561,18 +547,9 @@ int vtkPiRayCaster::RequestData(
   double b[6];
   if (molecule.Present)
   {
-    if (std::all_of(this->Bounds, this->Bounds + 6, [](double v) { return v == 0; }))
+    if (!molecule.ResolveBounds(this->Bounds, b, error))
     {
-      std::copy(molecule.Bounds, molecule.Bounds + 6, b);
-    }
-    else if (pisurf::ValidBounds(this->Bounds))
-    {
-      std::copy(this->Bounds, this->Bounds + 6, b);
-    }
-    else
-    {
-      vtkErrorMacro(<< "No bounds for the rays: bounds must be finite with x0 < x1, y0 < y1, "
-                       "z0 < z1 (or all zero for the molecule's)");
+      vtkErrorMacro(<< "No bounds for the rays: " << error);
       return 0;
     }
   }
@@ -758,14 +735,10 @@ int vtkPiRayCaster::RequestData(
   std::unique_ptr<pisurf::RayCaster> casterPointer;
   if (molecule.Present)
   {
-    try
+    field = molecule.MakeField(b, error);
+    if (!field)
     {
-      field = std::make_unique<pisurf::MoleculeField>(
-        molecule.Centers, molecule.Radii, molecule.Settings, b);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      vtkErrorMacro(<< error);
       return 0;
     }
     casterPointer = std::make_unique<pisurf::RayCaster>(*field);

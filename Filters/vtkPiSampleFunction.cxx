@@ -91,29 +91,15 @@ int vtkPiSampleFunction::RequestData(
   // the input's model, or the one set.
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  PiMoleculeInput molecule;
-  if (!molecule.Read(input, error))
+  PiInputSurface in;
+  if (!in.Read(input, this->PiSurface, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  vtkSmartPointer<vtkPiSurface> surface;
-  std::shared_ptr<const pisurf::ProductKernel> kernel;
-  if (!molecule.Present)
-  {
-    surface = PiSurfaceOf(input, this->PiSurface, error);
-    if (!surface)
-    {
-      vtkErrorMacro(<< error);
-      return 0;
-    }
-    kernel = surface->GetKernel();
-    if (!kernel || kernel->GetNumberOfFactors() == 0)
-    {
-      vtkErrorMacro(<< "The Pi-surface is invalid or has no factors");
-      return 0;
-    }
-  }
+  const PiMoleculeInput& molecule = in.Molecule;
+  const vtkSmartPointer<vtkPiSurface>& surface = in.Surface;
+  const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   const int* d = this->SampleDimensions;
   if (d[0] < 2 || d[1] < 2 || d[2] < 2)
   {
@@ -134,18 +120,9 @@ int vtkPiSampleFunction::RequestData(
   double b[6];
   if (molecule.Present)
   {
-    if (std::all_of(this->ModelBounds, this->ModelBounds + 6, [](double v) { return v == 0; }))
+    if (!molecule.ResolveBounds(this->ModelBounds, b, error))
     {
-      std::copy(molecule.Bounds, molecule.Bounds + 6, b);
-    }
-    else if (pisurf::ValidBounds(this->ModelBounds))
-    {
-      std::copy(this->ModelBounds, this->ModelBounds + 6, b);
-    }
-    else
-    {
-      vtkErrorMacro(<< "No bounds to sample: bounds must be finite with x0 < x1, y0 < y1, "
-                       "z0 < z1 (or all zero for the molecule's)");
+      vtkErrorMacro(<< "No bounds to sample: " << error);
       return 0;
     }
   }
@@ -189,14 +166,10 @@ int vtkPiSampleFunction::RequestData(
   std::unique_ptr<pisurf::MoleculeField> field;
   if (molecule.Present)
   {
-    try
+    field = molecule.MakeField(b, error);
+    if (!field)
     {
-      field = std::make_unique<pisurf::MoleculeField>(
-        molecule.Centers, molecule.Radii, molecule.Settings, b);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< "Invalid molecule: " << e.what());
+      vtkErrorMacro(<< error);
       return 0;
     }
   }
