@@ -1,6 +1,6 @@
 """PiSurfaces benchmarks: ratios against the VTK pipeline a user would otherwise write.
 
-    pvpython benchmark.py MODELS_DIR [N]      (./run bench; N = grid points per axis, 128)
+    pvpython benchmark.py MODELS_DIR [N]      (./run bench; N = grid points per axis, 256)
 
 For each model and each vtkSMPTools backend (Sequential, STDThread), measured side by
 side in one run (best of 3):
@@ -167,7 +167,7 @@ def run(name, surface, n):
 
 def main():
     models = sys.argv[1]
-    n = int(sys.argv[2]) if len(sys.argv) > 2 else 128
+    n = int(sys.argv[2]) if len(sys.argv) > 2 else 256
     cases = [
         ("10 spheres", ten_spheres()),
         ("table", load(os.path.join(models, "table.pisurf"))),
