@@ -1638,6 +1638,16 @@ struct MoleculeField::RaySearch
     size_t Offset, Count; // its atoms in the pool
   };
 
+  // Work buffers, per thread, reused from ray to ray.
+  struct Buffers
+  {
+    std::vector<Atom> Atoms, AllAtoms;
+    std::vector<Piece> Stack;
+    std::vector<int> Pool, Keep;
+    std::vector<double> Intervals;
+    std::vector<ScaledRange> Prefix, Suffix, Terms;
+  };
+
   const MoleculeField& M;
   const double* O;
   const double* D;
@@ -1648,15 +1658,18 @@ struct MoleculeField::RaySearch
   double Level;
   // The chunk: its middle, its atoms and far field T(s) = T0 + T1·s + T2·s² ± Bound.
   double Mid = 0.0;
-  std::vector<Atom> Atoms, AllAtoms;
+  Buffers& B;
+  std::vector<Atom>& Atoms;
+  std::vector<Atom>& AllAtoms;
   bool HasFar = false;
   double T0 = 0.0, T1 = 0.0, T2 = 0.0, Bound = 0.0;
-  std::vector<Piece> Stack;
-  std::vector<int> Pool, Keep;
+  std::vector<Piece>& Stack;
+  std::vector<int>& Pool;
+  std::vector<int>& Keep;
   bool Searching = false;
 
   RaySearch(const MoleculeField& m, const double* o, const double* d, const RayRootOptions& options,
-    std::vector<RayRoot>& roots)
+    std::vector<RayRoot>& roots, Buffers& buffers)
     : M(m)
     , O(o)
     , D(d)
@@ -1665,6 +1678,16 @@ struct MoleculeField::RaySearch
     , Cluster(roots, options.Tolerance)
     , Local(m.Settings.Mode == MoleculeMode::Local)
     , Level(m.Level)
+    , B(buffers)
+    , Atoms(buffers.Atoms)
+    , AllAtoms(buffers.AllAtoms)
+    , Stack(buffers.Stack)
+    , Pool(buffers.Pool)
+    , Keep(buffers.Keep)
+    , Intervals(buffers.Intervals)
+    , Prefix(buffers.Prefix)
+    , Suffix(buffers.Suffix)
+    , Terms(buffers.Terms)
   {
   }
 
@@ -1897,8 +1920,10 @@ struct MoleculeField::RaySearch
     const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
     return !terms.empty() && (lo - slack > 0.0 || hi + slack < 0.0);
   }
-  mutable std::vector<double> Intervals;
-  mutable std::vector<ScaledRange> Prefix, Suffix, Terms;
+  std::vector<double>& Intervals;
+  std::vector<ScaledRange>& Prefix;
+  std::vector<ScaledRange>& Suffix;
+  std::vector<ScaledRange>& Terms;
 
   // F's value at t (exact sign: the field's evaluation).
   double At(double t) const
@@ -2097,7 +2122,8 @@ void MoleculeField::CastRay(const double o[3], const double d[3], double t0, dou
     return;
   }
   // The segment cut where it crosses the cells' planes: each chunk lies in one cell.
-  std::vector<double> cuts{ t0, t1 };
+  thread_local std::vector<double> cuts;
+  cuts.assign({ t0, t1 });
   const double s = this->Settings.CellSize;
   for (int a = 0; a < 3; ++a)
   {
@@ -2118,7 +2144,8 @@ void MoleculeField::CastRay(const double o[3], const double d[3], double t0, dou
     }
   }
   std::sort(cuts.begin(), cuts.end());
-  RaySearch search(*this, o, d, options, roots);
+  thread_local RaySearch::Buffers buffers;
+  RaySearch search(*this, o, d, options, roots, buffers);
   for (size_t c = 0; c + 1 < cuts.size() && !search.Finished(); ++c)
   {
     if (cuts[c + 1] > cuts[c])
