@@ -2,12 +2,13 @@
 ParaView's MPI mode. The molecule reader gives its atoms to the first piece only; the
 filter asks every rank for the whole molecule and meshes the rank's slab of the grid.
 The union has the serial mesh's triangles and area, and both ranks mesh (rank 1 used to
-get no atoms and fail)."""
+get no atoms and fail). Pi Ray Cast downstream (on the molecule's own field) gives the
+serial hits."""
 from pitesting import check, finish
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
-from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
+from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface, vtkPiRayCaster
 
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 check(ranks == 2, "running on 2 ranks (got %d)" % ranks)
@@ -40,5 +41,20 @@ for mode in ("Global", "Local"):
         "ProcessId").GetComponentRange(0)
     check(r[0] == 0 and r[1] == 1, "%s: both ranks meshed (ProcessId range %s)" % (mode, r))
     print("%s: %d triangles, area %.9g (serial %.9g)" % (mode, triangles, area, serial_area))
+
+    # Pi Ray Cast downstream, on the molecule's field: each rank casts its slab of rows;
+    # together the serial hits.
+    caster = vtkPiRayCaster()
+    caster.SetInputConnection(serial.GetOutputPort())
+    caster.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
+    caster.SetResolution(40, 40)
+    caster.Update()
+    serial_hits = caster.GetOutput().GetNumberOfPoints()
+    rays = PiRayCast(Input=surface, ViewMode="Six Axis Views", Resolution=[40, 40])
+    rays.UpdatePipeline()
+    hits = rays.GetDataInformation().GetNumberOfPoints()
+    check(serial_hits > 1000 and hits == serial_hits,
+          "%s: %d ray hits on 2 ranks, %d serial" % (mode, hits, serial_hits))
+    print("%s: %d ray hits on 2 ranks, %d serial" % (mode, hits, serial_hits))
 
 finish(exit_on_success=False)
