@@ -4,6 +4,7 @@
 
 #include "PiProduct.h"  // SignOfProductMinus
 #include "PiRayRoots.h" // BracketedRoot
+#include "PiScaledInterval.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -1551,54 +1552,33 @@ int MoleculeField::ClassifyBox(const double box[6]) const
 
 namespace
 {
-// Products of many intervals as [Lo, Hi]·2^E (no overflow).
-struct ScaledRange
+// P·e^[lo, hi] (natural logarithms; false if too wide to represent).
+bool MultiplyExp(ScaledInterval& P, double lo, double hi)
 {
-  double Lo = 1.0, Hi = 1.0;
-  long E = 0;
+  if (!(hi - lo < 600.0))
+  {
+    return false;
+  }
+  const double e = std::floor(lo / Ln2);
+  P.Multiply({ std::exp(lo - e * Ln2), std::exp(hi - e * Ln2) });
+  P.E += static_cast<long>(e);
+  return true;
+}
 
-  void Multiply(double lo, double hi)
+// +1: every value of P exceeds `level` (>= 0); −1: every value is below it; 0: undecided.
+int Compare(const ScaledInterval& P, double level)
+{
+  double l = level;
+  if (level != 0.0)
   {
-    const double c0 = this->Lo * lo, c1 = this->Lo * hi, c2 = this->Hi * lo, c3 = this->Hi * hi;
-    this->Lo = std::min(std::min(c0, c1), std::min(c2, c3));
-    this->Hi = std::max(std::max(c0, c1), std::max(c2, c3));
-    const double a = std::max(std::fabs(this->Lo), std::fabs(this->Hi));
-    if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
-    {
-      int ex;
-      pisurf::Frexp(a, &ex);
-      this->Lo = pisurf::Ldexp(this->Lo, -ex);
-      this->Hi = pisurf::Ldexp(this->Hi, -ex);
-      this->E += ex;
-    }
+    l = P.E > 2000 ? 0.0 : P.E < -2000 ? HUGE_VAL : std::ldexp(level, static_cast<int>(-P.E));
   }
-  // e^[lo, hi] (natural logarithms; false if too wide to represent).
-  bool MultiplyExp(double lo, double hi)
+  if (P.Lo > l)
   {
-    if (!(hi - lo < 600.0))
-    {
-      return false;
-    }
-    const double e = std::floor(lo / Ln2);
-    this->Multiply(std::exp(lo - e * Ln2), std::exp(hi - e * Ln2));
-    this->E += static_cast<long>(e);
-    return true;
+    return 1;
   }
-  // +1: every value exceeds `level` (>= 0); −1: every value is below it; 0: undecided.
-  int Compare(double level) const
-  {
-    double l = level;
-    if (level != 0.0)
-    {
-      l = this->E > 2000 ? 0.0 : this->E < -2000 ? HUGE_VAL : std::ldexp(level, static_cast<int>(-this->E));
-    }
-    if (this->Lo > l)
-    {
-      return 1;
-    }
-    return this->Hi < l ? -1 : 0;
-  }
-};
+  return P.Hi < l ? -1 : 0;
+}
 
 // The range of a·s² + b·s + c over [s0, s1].
 inline void QuadraticRange(double a, double b, double c, double s0, double s1, double& lo, double& hi)
@@ -1644,8 +1624,8 @@ struct MoleculeField::RaySearch
     std::vector<Atom> Atoms, AllAtoms;
     std::vector<Piece> Stack;
     std::vector<int> Pool, Keep;
-    std::vector<double> Intervals;
-    std::vector<ScaledRange> Prefix, Suffix, Terms;
+    std::vector<Interval> Values, Slopes;
+    std::vector<ScaledInterval> Prefix, Suffix;
   };
 
   const MoleculeField& M;
@@ -1684,10 +1664,10 @@ struct MoleculeField::RaySearch
     , Stack(buffers.Stack)
     , Pool(buffers.Pool)
     , Keep(buffers.Keep)
-    , Intervals(buffers.Intervals)
+    , Values(buffers.Values)
+    , Slopes(buffers.Slopes)
     , Prefix(buffers.Prefix)
     , Suffix(buffers.Suffix)
-    , Terms(buffers.Terms)
   {
   }
 
@@ -1764,7 +1744,7 @@ struct MoleculeField::RaySearch
     this->Straddling = 0;
     const double s0 = a - this->Mid, s1 = b - this->Mid;
     const double sm = std::max(std::fabs(s0), std::fabs(s1));
-    ScaledRange P;
+    ScaledInterval P;
     for (size_t k = 0; k < count; ++k)
     {
       const Atom& q = atoms[list[k]];
@@ -1782,11 +1762,11 @@ struct MoleculeField::RaySearch
           continue; // beyond ρ on the whole piece: g = 1
         }
         const LocalRange g = LocalFactorRange(q, lo, hi);
-        P.Multiply(g.G0, g.G1);
+        P.Multiply({ g.G0, g.G1 });
       }
       else
       {
-        P.Multiply(lo, hi);
+        P.Multiply({ lo, hi });
       }
       if (keep)
       {
@@ -1800,12 +1780,12 @@ struct MoleculeField::RaySearch
       const double slack = 1e-13 * (std::fabs(this->T0) + std::fabs(this->T1) * sm +
                                      std::fabs(this->T2) * sm * sm) +
         1e-13 + (bound ? this->Bound : 0.0);
-      if (!P.MultiplyExp(lo - slack, hi + slack))
+      if (!MultiplyExp(P, lo - slack, hi + slack))
       {
         return 0;
       }
     }
-    return P.Compare(this->Level);
+    return Compare(P, this->Level);
   }
 
   // Whether F is strictly monotone on [a, b]: an enclosure of F' = E·(Σ_i g_i' Π_{j≠i} g_j
@@ -1819,9 +1799,10 @@ struct MoleculeField::RaySearch
   {
     const double s0 = a - this->Mid, s1 = b - this->Mid;
     const double sm = std::max(std::fabs(s0), std::fabs(s1));
-    std::vector<double>& g = this->Intervals;
-    g.resize(4 * count);
-    size_t n = 0;
+    std::vector<Interval>& g = this->Values;
+    std::vector<Interval>& dg = this->Slopes;
+    g.clear();
+    dg.clear();
     for (size_t k = 0; k < count; ++k)
     {
       const Atom& q = atoms[list[k]];
@@ -1863,67 +1844,25 @@ struct MoleculeField::RaySearch
         d0 -= es;
         d1 += es;
       }
-      g[4 * n] = g0;
-      g[4 * n + 1] = g1;
-      g[4 * n + 2] = d0;
-      g[4 * n + 3] = d1;
-      ++n;
-    }
-    // Σ_i g_i' Π_{j≠i} g_j with prefix and suffix products (scaled), then + P·L'.
-    std::vector<ScaledRange>& prefix = this->Prefix;
-    std::vector<ScaledRange>& suffix = this->Suffix;
-    prefix.assign(n + 1, ScaledRange());
-    suffix.assign(n + 1, ScaledRange());
-    for (size_t i = 0; i < n; ++i)
-    {
-      prefix[i + 1] = prefix[i];
-      prefix[i + 1].Multiply(g[4 * i], g[4 * i + 1]);
-    }
-    for (size_t i = n; i > 0; --i)
-    {
-      suffix[i - 1] = suffix[i];
-      suffix[i - 1].Multiply(g[4 * (i - 1)], g[4 * (i - 1) + 1]);
-    }
-    std::vector<ScaledRange>& terms = this->Terms;
-    terms.clear();
-    for (size_t i = 0; i < n; ++i)
-    {
-      ScaledRange t = prefix[i];
-      t.Multiply(g[4 * i + 2], g[4 * i + 3]);
-      t.Multiply(suffix[i + 1].Lo, suffix[i + 1].Hi);
-      t.E += suffix[i + 1].E;
-      terms.push_back(t);
+      g.push_back({ g0, g1 });
+      dg.push_back({ d0, d1 });
     }
     if (far && this->HasFar)
     {
-      // L' = T1 + 2·T2·s ± B'·|d|.
+      // P·L' enters as the term of one more factor, 1 with slope L' = T1 + 2·T2·s ± B'·|d|.
       const double l0 = this->T1 + 2.0 * this->T2 * s0, l1 = this->T1 + 2.0 * this->T2 * s1;
       const double h = 0.5 * std::sqrt(3.0) * this->M.Settings.CellSize;
       const double norm = std::sqrt(this->D[0] * this->D[0] + this->D[1] * this->D[1] + this->D[2] * this->D[2]);
       const double slack = 3.0 * this->Bound / h * norm + 1e-13 * (std::fabs(l0) + std::fabs(l1)) + 1e-13;
-      ScaledRange t = prefix[n];
-      t.Multiply(std::min(l0, l1) - slack, std::max(l0, l1) + slack);
-      terms.push_back(t);
+      g.push_back({ 1.0, 1.0 });
+      dg.push_back({ std::min(l0, l1) - slack, std::max(l0, l1) + slack });
     }
-    long top = std::numeric_limits<long>::min();
-    for (const ScaledRange& t : terms)
-    {
-      top = std::max(top, t.E);
-    }
-    double lo = 0.0, hi = 0.0;
-    for (const ScaledRange& t : terms)
-    {
-      const int shift = static_cast<int>(std::max<long>(t.E - top, -2000));
-      lo += std::ldexp(t.Lo, shift);
-      hi += std::ldexp(t.Hi, shift);
-    }
-    const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
-    return !terms.empty() && (lo - slack > 0.0 || hi + slack < 0.0);
+    return ProductDerivativeHasOneSign(g.data(), dg.data(), g.size(), this->Prefix, this->Suffix);
   }
-  std::vector<double>& Intervals;
-  std::vector<ScaledRange>& Prefix;
-  std::vector<ScaledRange>& Suffix;
-  std::vector<ScaledRange>& Terms;
+  std::vector<Interval>& Values;
+  std::vector<Interval>& Slopes;
+  std::vector<ScaledInterval>& Prefix;
+  std::vector<ScaledInterval>& Suffix;
 
   // F's value at t (exact sign: the field's evaluation).
   double At(double t) const

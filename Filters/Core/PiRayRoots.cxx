@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiRayRoots.h"
 #include "PiFloat.h"
+#include "PiScaledInterval.h"
 
 #include "PiPolynomial.h"
 #include "PiProduct.h"
@@ -11,46 +12,47 @@
 
 namespace pisurf
 {
+
+bool ProductDerivativeHasOneSign(const Interval* f, const Interval* df, size_t n,
+  std::vector<ScaledInterval>& prefix, std::vector<ScaledInterval>& suffix)
+{
+  prefix.assign(n + 1, ScaledInterval());
+  suffix.assign(n + 1, ScaledInterval());
+  for (size_t i = 0; i < n; ++i)
+  {
+    prefix[i + 1] = prefix[i];
+    prefix[i + 1].Multiply(f[i]);
+  }
+  for (size_t i = n; i > 0; --i)
+  {
+    suffix[i - 1] = suffix[i];
+    suffix[i - 1].Multiply(f[i - 1]);
+  }
+  // Terms with their exponents; summed at the largest exponent.
+  long top = std::numeric_limits<long>::min();
+  for (size_t i = 0; i < n; ++i)
+  {
+    ScaledInterval t = prefix[i];
+    t.Multiply(df[i]);
+    t.Multiply({ suffix[i + 1].Lo, suffix[i + 1].Hi });
+    t.E += suffix[i + 1].E;
+    prefix[i] = t; // prefix[i] is not needed any more: reuse it for the term
+    top = std::max(top, t.E);
+  }
+  double lo = 0.0, hi = 0.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const ScaledInterval& t = prefix[i];
+    const long shift = std::max<long>(t.E - top, -2000);
+    lo += pisurf::Ldexp(t.Lo, static_cast<int>(shift));
+    hi += pisurf::Ldexp(t.Hi, static_cast<int>(shift));
+  }
+  const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
+  return lo - slack > 0.0 || hi + slack < 0.0;
+}
+
 namespace
 {
-// An interval scaled by 2^E, so that products of many factors stay representable.
-struct ScaledInterval
-{
-  double Lo = 1.0, Hi = 1.0;
-  long E = 0;
-
-  void Normalize()
-  {
-    const double a = std::max(std::fabs(this->Lo), std::fabs(this->Hi));
-    if (a != 0.0 && std::isfinite(a) && (a > 0x1p256 || a < 0x1p-256))
-    {
-      int ex;
-      pisurf::Frexp(a, &ex);
-      this->Lo = pisurf::Ldexp(this->Lo, -ex);
-      this->Hi = pisurf::Ldexp(this->Hi, -ex);
-      this->E += ex;
-    }
-  }
-  void Multiply(const Interval& v)
-  {
-    // Bring v near 1 first, as the product kernel does.
-    double lo = v.Lo, hi = v.Hi;
-    const double a = std::max(std::fabs(lo), std::fabs(hi));
-    if (a != 0.0 && std::isfinite(a) && (a > 0x1p256 || a < 0x1p-256))
-    {
-      int ex;
-      pisurf::Frexp(a, &ex);
-      lo = pisurf::Ldexp(lo, -ex);
-      hi = pisurf::Ldexp(hi, -ex);
-      this->E += ex;
-    }
-    const double c[4] = { this->Lo * lo, this->Lo * hi, this->Hi * lo, this->Hi * hi };
-    this->Lo = std::min({ c[0], c[1], c[2], c[3] });
-    this->Hi = std::max({ c[0], c[1], c[2], c[3] });
-    this->Normalize();
-  }
-};
-
 // Bernstein coefficients on [a, b] of a polynomial given by `count` ascending monomial
 // coefficients in t, into `bern`; `q` is scratch of the same size.
 void ToBernstein(const double* c, int count, double a, double b, double* q, double* bern)
@@ -282,42 +284,8 @@ public:
       }
       df[i] = Hull(d, count - 1);
     }
-    // Σ_i p_i' Π_{j≠i} p_j with prefix and suffix products, scaled.
-    std::vector<ScaledInterval>& prefix = this->W.Prefix;
-    std::vector<ScaledInterval>& suffix = this->W.Suffix;
-    prefix.assign(n + 1, ScaledInterval());
-    suffix.assign(n + 1, ScaledInterval());
-    for (int i = 0; i < n; ++i)
-    {
-      prefix[i + 1] = prefix[i];
-      prefix[i + 1].Multiply(f[i]);
-    }
-    for (int i = n; i > 0; --i)
-    {
-      suffix[i - 1] = suffix[i];
-      suffix[i - 1].Multiply(f[i - 1]);
-    }
-    // Terms with their exponents; summed at the largest exponent.
-    long top = std::numeric_limits<long>::min();
-    for (int i = 0; i < n; ++i)
-    {
-      ScaledInterval t = prefix[i];
-      t.Multiply(df[i]);
-      t.Multiply({ suffix[i + 1].Lo, suffix[i + 1].Hi });
-      t.E += suffix[i + 1].E;
-      prefix[i] = t; // prefix[i] is not needed any more: reuse it for the term
-      top = std::max(top, t.E);
-    }
-    double lo = 0.0, hi = 0.0;
-    for (int i = 0; i < n; ++i)
-    {
-      const ScaledInterval& t = prefix[i];
-      const long shift = std::max<long>(t.E - top, -2000);
-      lo += pisurf::Ldexp(t.Lo, static_cast<int>(shift));
-      hi += pisurf::Ldexp(t.Hi, static_cast<int>(shift));
-    }
-    const double slack = 1e-12 * (std::fabs(lo) + std::fabs(hi));
-    return lo - slack > 0.0 || hi + slack < 0.0;
+    // F' = Σ_i p_i' Π_{j≠i} p_j of one sign?
+    return ProductDerivativeHasOneSign(f.data(), df.data(), n, this->W.Prefix, this->W.Suffix);
   }
 
   // The single root of a monotone piece with a sign change.
