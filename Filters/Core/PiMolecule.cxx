@@ -1638,7 +1638,6 @@ struct MoleculeField::RaySearch
   double Level;
   // The chunk: its middle, its atoms and far field T(s) = T0 + T1·s + T2·s² ± Bound.
   double Mid = 0.0;
-  Buffers& B;
   std::vector<Atom>& Atoms;
   std::vector<Atom>& AllAtoms;
   bool HasFar = false;
@@ -1658,7 +1657,6 @@ struct MoleculeField::RaySearch
     , Cluster(roots, options.Tolerance)
     , Local(m.Settings.Mode == MoleculeMode::Local)
     , Level(m.Level)
-    , B(buffers)
     , Atoms(buffers.Atoms)
     , AllAtoms(buffers.AllAtoms)
     , Stack(buffers.Stack)
@@ -1864,6 +1862,9 @@ struct MoleculeField::RaySearch
   std::vector<ScaledInterval>& Prefix;
   std::vector<ScaledInterval>& Suffix;
 
+  // Whether F changes sign between values va and vb (a crossing root lies between).
+  static bool Crosses(double va, double vb) { return (va < 0 && vb > 0) || (va > 0 && vb < 0); }
+
   // F's value at t (exact sign: the field's evaluation).
   double At(double t) const
   {
@@ -1923,7 +1924,7 @@ struct MoleculeField::RaySearch
       {
         // One root at most: where F changes sign between the ends.
         const double va = this->At(p.A), vb = this->At(p.B);
-        if ((va < 0 && vb > 0) || (va > 0 && vb < 0))
+        if (Crosses(va, vb))
         {
           const double t = BracketedRoot([this](double x) { return this->At(x); }, p.A, p.B, va,
             vb, this->Options.Tolerance, 0.0);
@@ -1938,8 +1939,7 @@ struct MoleculeField::RaySearch
       if (p.B - p.A <= this->Options.Tolerance || p.Depth >= this->Options.MaximumDepth)
       {
         const double va = this->At(p.A), vb = this->At(p.B);
-        const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
-        this->Cluster.Add(0.5 * (p.A + p.B), !change, va, vb);
+        this->Cluster.Add(0.5 * (p.A + p.B), !Crosses(va, vb), va, vb);
         continue;
       }
       // Both halves share the atoms that still matter; the right half goes below the
@@ -1957,8 +1957,9 @@ struct MoleculeField::RaySearch
   // the piece (`straddler`) does, a guess t of the root (in a protein the product of
   // the others is so large that F's root lies within rounding of that sphere), certified
   // by enclosures that exclude the level on both sides of [t − tolerance/2,
-  // t + tolerance/2]; true if they do (that middle then treated as a leaf). (In Local mode, or at a blended
-  // root, an enclosure of a piece that ends next to a root cannot exclude it: halvings.)
+  // t + tolerance/2]; true if they do (that middle then treated as a leaf). (In Local
+  // mode, or at a blended root, an enclosure of a piece that ends next to a root cannot
+  // exclude it: halvings.)
   bool Isolate(const Piece& p, const std::vector<Atom>& atoms, const int* list, bool far, int straddler)
   {
     // The roots of A s² + B s + C (A > 0), the numerically stable way; one on the piece.
@@ -1991,8 +1992,7 @@ struct MoleculeField::RaySearch
     if (this->Enclose(t - h, t + h, atoms, list, p.Count, far, true, nullptr) == 0)
     {
       const double va = this->At(t - h), vb = this->At(t + h);
-      const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
-      this->Cluster.Add(t, !change, va, vb);
+      this->Cluster.Add(t, !Crosses(va, vb), va, vb);
     }
     return true;
   }
