@@ -208,6 +208,22 @@ struct PiInputSurface
     }
     return true;
   }
+
+  /// The box to work in: `requested`, or where it is all zero the molecule's bounds or
+  /// the model's; false with the reason in `error` if there is none.
+  bool ResolveBounds(const double requested[6], double bounds[6], std::string& error) const
+  {
+    if (this->Molecule.Present)
+    {
+      return this->Molecule.ResolveBounds(requested, bounds, error);
+    }
+    if (!this->Surface->ResolveBounds(requested, bounds))
+    {
+      error = this->Surface->GetErrorMessage();
+      return false;
+    }
+    return true;
+  }
 };
 
 #endif

@@ -548,8 +548,9 @@ int vtkPiMoleculeSurface::RequestData(
   }
   fd->AddArray(centerArray);
   fd->AddArray(radiusOut);
-  // With the mode, r, the influence radius and the bounds: Pi Ray Cast rebuilds the field
-  // from these (PiInputModel.h), for any size and either mode.
+  // With the mode, r, the influence radius and the bounds: Pi Ray Cast, Image Based
+  // Triangulation and Pi Sample Function rebuild the field from these (PiInputModel.h),
+  // for any size and either mode.
   vtkNew<vtkDoubleArray> settingsOut;
   settingsOut->SetName("PiMoleculeSettings");
   settingsOut->SetNumberOfTuples(9);

@@ -545,17 +545,9 @@ int vtkPiRayCaster::RequestData(
     return 0;
   }
   double b[6];
-  if (molecule.Present)
+  if (!in.ResolveBounds(this->Bounds, b, error))
   {
-    if (!molecule.ResolveBounds(this->Bounds, b, error))
-    {
-      vtkErrorMacro(<< "No bounds for the rays: " << error);
-      return 0;
-    }
-  }
-  else if (!surface->ResolveBounds(this->Bounds, b))
-  {
-    vtkErrorMacro(<< "No bounds for the rays: " << surface->GetErrorMessage());
+    vtkErrorMacro(<< "No bounds for the rays: " << error);
     return 0;
   }
 

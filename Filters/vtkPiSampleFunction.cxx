@@ -98,7 +98,6 @@ int vtkPiSampleFunction::RequestData(
     return 0;
   }
   const PiMoleculeInput& molecule = in.Molecule;
-  const vtkSmartPointer<vtkPiSurface>& surface = in.Surface;
   const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   const int* d = this->SampleDimensions;
   if (d[0] < 2 || d[1] < 2 || d[2] < 2)
@@ -118,17 +117,9 @@ int vtkPiSampleFunction::RequestData(
     return 0;
   }
   double b[6];
-  if (molecule.Present)
+  if (!in.ResolveBounds(this->ModelBounds, b, error))
   {
-    if (!molecule.ResolveBounds(this->ModelBounds, b, error))
-    {
-      vtkErrorMacro(<< "No bounds to sample: " << error);
-      return 0;
-    }
-  }
-  else if (!surface->ResolveBounds(this->ModelBounds, b))
-  {
-    vtkErrorMacro(<< "No bounds to sample: " << surface->GetErrorMessage());
+    vtkErrorMacro(<< "No bounds to sample: " << error);
     return 0;
   }
   double origin[3], spacing[3];
