@@ -118,7 +118,7 @@ def main():
     backends = ['Sequential', 'STDThread']
     cases = [('1ubq', ubq, 0, 0.5), ('1a0q', read('1a0q.pdb'), 1, 0.25)]
     for copies in ([2, 16] if quick else [2, 16, 166]):
-        m = cluster(ubq, copies)
+        m = largest = cluster(ubq, copies)
         cases.append(('%d x 1ubq' % copies, m, 1, 0.5))
         if copies <= 16:
             cases.append(('%d x 1ubq' % copies, m, 0, 0.5))  # Global scaling
@@ -135,6 +135,7 @@ def main():
                 name, n, 'Global' if mode == 0 else 'Local', spacing, backend, tp,
                 out.GetNumberOfCells(), tg, tc, tg / tp, tc / tp, 1e6 * tp / n))
             sys.stdout.flush()
+    return ubq, largest  # for the ray-casting table
 
 
 def cast(surface_output, view, n, molecule=True):
@@ -155,13 +156,12 @@ def cast(surface_output, view, n, molecule=True):
     return time.perf_counter() - t, c.GetOutput().GetNumberOfPoints()
 
 
-def rays(quick):
-    ubq = read('1ubq.pdb')
-    big = cluster(ubq, 16 if quick else 166)
+def rays(ubq, big):
     six, minus_z = vtkPiRayCaster.SIX_AXIS_VIEWS, vtkPiRayCaster.MINUS_Z
     cases = [('1ubq', ubq, 0, six, 64, True), ('1ubq', ubq, 0, six, 512, False),
              ('1ubq', ubq, 1, six, 512, False),
-             ('%d x 1ubq' % (16 if quick else 166), big, 1, minus_z, 512, False)]
+             ('%d x 1ubq' % (big.GetNumberOfAtoms() // ubq.GetNumberOfAtoms()), big, 1, minus_z, 512,
+              False)]
     print()
     print('| molecule | atoms | mode | views | pixels | backend | molecule path | rays/s | product path | ratio | hits |')
     print('|---|---|---|---|---|---|---|---|---|---|---|')
@@ -188,5 +188,4 @@ def rays(quick):
 
 
 if __name__ == '__main__':
-    main()
-    rays('--quick' in sys.argv)
+    rays(*main())
