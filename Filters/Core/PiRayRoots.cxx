@@ -495,6 +495,172 @@ struct FastWorkspace
 // Levels of re-expansion (see below), each with its own buffers.
 constexpr int FastLevels = 4;
 
+// At most this many factors take QuickSegment (its enclosures live on the stack).
+constexpr int QuickFactors = 16;
+
+// The common case decided without the product's Bernstein form: a short segment (an
+// octree leaf's depth range) on which F − r provably keeps one sign, or is provably
+// monotone. Each factor's centred form about the middle m, from its Taylor shift q
+// (f(m + τ) = Σ q_k τ^k, |τ| <= h): f ∈ q_0 ± Σ_{k>=1} |q_k| h^k and
+// f' ∈ q_1 ± Σ_{k>=2} k |q_k| h^(k−1), each widened by the rounding of the shift (the
+// same shift of |c| at |m| bounds every term it sums) and of the sums. Then:
+//   the product's enclosure excludes r (beyond 1e-12 of its size): no root;
+//   Σ f_i' Π_{j≠i} f_j has one sign (intervals; 1e-12 slack): at most one root, which
+//   exists if F has strictly opposite signs at the ends (each beyond its evaluation's
+//   rounding), and is found by NewtonRoot to the tolerance.
+// Anything else (a possible tangency, two roots, an end within rounding of 0, a value
+// beyond 2^±60 where the plain interval products could lose range) is left undecided:
+// false, nothing added, and the Bernstein path decides. Sound, not identical: a piece
+// the Bernstein path would subdivide down to a tangent root within its relative slack
+// of 0 (F's true minimum above 0 by less than 1e-12 of F) is excluded here.
+bool QuickSegment(const double* coefficients, const int* counts, int factors, double r,
+  double t0, double t1, const RayRootOptions& options, RootCluster& cluster, bool& found)
+{
+  found = false;
+  if (factors > QuickFactors || factors == 0 || !(t1 > t0))
+  {
+    return false;
+  }
+  constexpr double U = 0x1p-53;
+  constexpr double Range = 0x1p60;
+  const double m = 0.5 * (t0 + t1), h = 0.5 * (t1 - t0), am = std::fabs(m);
+  Interval f[QuickFactors], df[QuickFactors];
+  double q[MaxDegree + 1], M[MaxDegree + 1];
+  for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+  {
+    const int d = counts[i] - 1;
+    for (int k = 0; k <= d; ++k)
+    {
+      q[k] = coefficients[offset + k];
+      M[k] = std::fabs(q[k]);
+    }
+    for (int a = 0; a < d; ++a)
+    {
+      for (int k = d - 1; k >= a; --k)
+      {
+        q[k] += m * q[k + 1];
+        M[k] += am * M[k + 1];
+      }
+    }
+    // Each q_k is within γ·M_k of the exact shift (at most 2d roundings per term it
+    // sums); generously γ = 4(d + 1)u.
+    const double gamma = 4.0 * (d + 1) * U;
+    double spread = 0.0, dspread = 0.0, wide = 0.0, dwide = 0.0, hk = 1.0;
+    for (int k = 1; k <= d; ++k)
+    {
+      // hk = h^(k−1) here
+      dwide += k * M[k] * hk;
+      if (k >= 2)
+      {
+        dspread += k * std::fabs(q[k]) * hk;
+      }
+      hk *= h;
+      spread += std::fabs(q[k]) * hk;
+      wide += M[k] * hk;
+    }
+    const double q1 = d >= 1 ? q[1] : 0.0;
+    const double width = spread + gamma * (M[0] + wide) + (d + 2) * U * (std::fabs(q[0]) + spread);
+    const double dwidth = dspread + gamma * dwide + (d + 2) * U * (std::fabs(q1) + dspread);
+    f[i] = { q[0] - width, q[0] + width };
+    df[i] = { q1 - dwidth, q1 + dwidth };
+    const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
+    const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
+    if (!(fm <= Range && dm <= Range))
+    {
+      return false; // (also NaN)
+    }
+  }
+  auto times = [](const Interval& x, const Interval& y) {
+    const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
+    return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+  };
+  // Prefix products (prefix[i] = Π_{j<i} f_j), then the whole product.
+  Interval prefix[QuickFactors + 1];
+  prefix[0] = { 1.0, 1.0 };
+  for (int i = 0; i < factors; ++i)
+  {
+    prefix[i + 1] = times(prefix[i], f[i]);
+  }
+  // Rounding of the products (round to nearest, not outwards) and the underflow of a
+  // tiny end: a relative and an absolute margin far above both.
+  const Interval& whole = prefix[factors];
+  const double size = std::max({ std::fabs(whole.Lo), std::fabs(whole.Hi), std::fabs(r) });
+  const double slack = 1e-12 * size + 1e-290;
+  if (whole.Lo - r > slack || whole.Hi - r < -slack)
+  {
+    return true; // F − r keeps one sign: no root
+  }
+  // The derivative Σ f_i' Π_{j≠i} f_j with suffix products formed on the way back.
+  Interval suffix = { 1.0, 1.0 };
+  double lo = 0.0, hi = 0.0, magnitude = 0.0;
+  for (int i = factors - 1; i >= 0; --i)
+  {
+    const Interval term = times(times(prefix[i], df[i]), suffix);
+    lo += term.Lo;
+    hi += term.Hi;
+    magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
+    suffix = times(suffix, f[i]);
+  }
+  const double dslack = 1e-12 * magnitude + 1e-290;
+  if (!(lo > dslack || hi < -dslack))
+  {
+    return false; // F may turn: the Bernstein path decides
+  }
+  // Monotone: F at the ends, with a bound on each evaluation's rounding (Horner of |c|
+  // at |t| bounds every term; γ as above, for the products too).
+  auto valueAt = [&](double t, double& bound) {
+    double v = 1.0, a = 1.0;
+    const double at = std::fabs(t);
+    int n = 0;
+    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+    {
+      const double* c = coefficients + offset;
+      double fi = 0.0, ai = 0.0;
+      for (int k = counts[i] - 1; k >= 0; --k)
+      {
+        fi = fi * t + c[k];
+        ai = ai * at + std::fabs(c[k]);
+      }
+      v *= fi;
+      a *= ai;
+      n += counts[i] + 1;
+    }
+    bound = 4.0 * (n + 2) * U * (a + std::fabs(r)) + 1e-290;
+    return v - r;
+  };
+  double ba, bb;
+  const double va = valueAt(t0, ba), vb = valueAt(t1, bb);
+  if (!(std::fabs(va) > ba && std::fabs(vb) > bb) || !std::isfinite(va) || !std::isfinite(vb))
+  {
+    return false; // an end within rounding of a root: the Bernstein path decides
+  }
+  if ((va > 0) == (vb > 0))
+  {
+    return true; // monotone without a change of sign: no root
+  }
+  auto phid = [&](double t, double& derivative) {
+    double v = 1.0, dv = 0.0;
+    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+    {
+      const double* c = coefficients + offset;
+      double fi = 0.0, dfi = 0.0;
+      for (int k = counts[i] - 1; k >= 0; --k)
+      {
+        dfi = dfi * t + fi;
+        fi = fi * t + c[k];
+      }
+      dv = dv * fi + v * dfi;
+      v *= fi;
+    }
+    derivative = dv;
+    return v - r;
+  };
+  cluster.Add(NewtonRoot(phid, t0, t1, va, options.Tolerance, t0 + (t1 - t0) * va / (va - vb)),
+    false, va, vb);
+  found = true;
+  return true;
+}
+
 // Returns false, before adding any root, when the fast path does not apply (the caller
 // then takes the general one): total degree above FastDegree, a factor identically zero
 // on the segment, a scale that leaves the double range, or terms that cancel beyond its
@@ -512,6 +678,11 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   if (degree > FastDegree || factors == 0)
   {
     return false;
+  }
+  bool found;
+  if (QuickSegment(coefficients, counts, factors, r, t0, t1, options, cluster, found))
+  {
+    return true;
   }
   thread_local FastWorkspace spaces[FastLevels];
   FastWorkspace& w = spaces[level];

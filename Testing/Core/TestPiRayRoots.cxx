@@ -247,3 +247,103 @@ TEST(RayRoots, ManyFactorsBlendedAcrossALongSegment)
   }
   EXPECT_GT(checked, 40);
 }
+
+TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
+{
+  // The ray caster searches octree leaves' short depth ranges, which a quick test
+  // decides from centred forms of the factors (one sign, or monotone with a sign change)
+  // before any Bernstein expansion. Cut into 97 pieces (leaf-like lengths, ends at
+  // arbitrary places), products of spheres and tori at r = 0.01, 1 and 10 must give the
+  // roots the whole ray gives (each within 2 tolerances, a root at a shared end counted
+  // once), every sign change among 20000 long-double samples must hold one, and every
+  // crossing root must have opposite signs a tolerance either side.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
+  const double tolerance = RayRootOptions().Tolerance;
+  int compared = 0, changes = 0;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    std::vector<std::vector<double>> factors;
+    const double o[3] = { -4.0, 0.5 * c(rng), 0.5 * c(rng) }, d[3] = { 1, 0, 0 };
+    const int count = 2 + trial % 4;
+    for (int i = 0; i < count; ++i)
+    {
+      if (i == 0 && trial % 3 == 0)
+      {
+        PrimitiveSpec torus;
+        torus.Type = PrimitiveType::Torus;
+        torus.Center[0] = 0.5 * c(rng);
+        torus.Center[1] = 0.2 * c(rng);
+        torus.MajorRadius = 1.0;
+        torus.MinorRadius = 0.05 + 0.2 * unit(rng);
+        factors.push_back(Along(torus, o, d));
+      }
+      else
+      {
+        factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
+      }
+    }
+    const double r = trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0);
+    const double length = 8.0;
+    const auto whole = Roots(factors, r, 0.0, length);
+    std::vector<RayRoot> pieces;
+    const int n = 97;
+    for (int s = 0; s < n; ++s)
+    {
+      // Uneven cuts: the ends fall anywhere relative to the roots.
+      const double a = length * (s + (s == 0 ? 0.0 : 0.37)) / n;
+      const double b = s == n - 1 ? length : length * (s + 1.37) / n;
+      for (const RayRoot& x : Roots(factors, r, a, b))
+      {
+        if (pieces.empty() || x.T - pieces.back().T > 2.0 * tolerance)
+        {
+          pieces.push_back(x);
+        }
+      }
+    }
+    ASSERT_EQ(pieces.size(), whole.size()) << "trial " << trial;
+    for (size_t k = 0; k < whole.size(); ++k)
+    {
+      EXPECT_NEAR(pieces[k].T, whole[k].T, 2.0 * tolerance) << "trial " << trial << " root " << k;
+      EXPECT_EQ(pieces[k].Tangent, whole[k].Tangent) << "trial " << trial << " root " << k;
+      ++compared;
+    }
+    auto F = [&](double t) {
+      long double p = 1.0L;
+      for (const auto& f : factors)
+      {
+        long double v = 0.0L;
+        for (size_t k = f.size(); k-- > 0;)
+        {
+          v = v * t + f[k];
+        }
+        p *= v;
+      }
+      return p - r;
+    };
+    const int samples = 20000;
+    long double previous = F(0.0);
+    for (int s = 1; s <= samples; ++s)
+    {
+      const double ta = length * (s - 1) / samples, tb = length * s / samples;
+      const long double value = F(tb);
+      if ((value < 0) != (previous < 0))
+      {
+        EXPECT_TRUE(std::any_of(pieces.begin(), pieces.end(), [&](const RayRoot& x) {
+          return x.T >= ta - tolerance && x.T <= tb + tolerance;
+        })) << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
+        ++changes;
+      }
+      previous = value;
+    }
+    for (const RayRoot& x : pieces)
+    {
+      if (!x.Tangent)
+      {
+        EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0) << "trial " << trial << " root " << x.T;
+      }
+    }
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(changes, 100);
+}
