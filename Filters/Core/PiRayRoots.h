@@ -27,6 +27,14 @@
  * polygon's zero crossing, that returns the midpoint of a bracket no longer than the
  * tolerance. Larger products (molecules) keep the general path above.
  *
+ * Before that expansion, a segment of up to 16 factors is offered to a cheaper test
+ * (the ray caster's octree leaves hand it short depth ranges, most of which need no
+ * subdivision): each factor's centred form about the middle (its Taylor shift, widened
+ * by the shift's rounding) encloses the factor and its derivative; a product enclosure
+ * that misses r means no root, a derivative Σ p_i' Π_{j≠i} p_j of one sign with F of
+ * strictly opposite signs at the ends (beyond their rounding) means exactly one,
+ * solved by the same Newton's method. Everything else goes on to the Bernstein form.
+ *
  * Thin features (a torus of minor radius 0.01, two spheres 1e-6 apart) are therefore
  * never skipped, unlike fixed-step marching. No VTK here.
  */
