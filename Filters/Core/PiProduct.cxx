@@ -309,66 +309,104 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
     }
     return;
   }
-  // Chunks of points: per factor, one Horner step for every point of the chunk before
-  // the next step (independent chains, vectorized), then the plain product. If every
-  // factor value of the chunk is 0 or within 2^±B, B = min(256, 1000 / factors), no
-  // partial product leaves the normal range, so the plain product has the same bits as
-  // the scaled one (whose rescaling is by exact powers of two); and F must be finite.
-  // Otherwise the chunk goes point by point through EvaluateRestricted.
-  constexpr int Chunk = 32;
+  // Groups of 8 points held in registers (two vectors of 4 doubles): per factor, its
+  // Horner chain for all 8 points, multiplied into the 8 products, with the smallest
+  // and largest |factor value| of the group; no array round trips through memory. If
+  // every factor value of the group is 0 or within 2^±B, B = min(256, 1000 / factors),
+  // no partial product leaves the normal range, so the plain product has the same bits
+  // as the scaled one (whose rescaling is by exact powers of two); and F must be
+  // finite. Otherwise the point goes through EvaluateRestricted. The same operations in
+  // the same order per point (no FMA: see PISURF_AVX2_CLONES), so the same bits.
+  typedef double V4 __attribute__((vector_size(32)));
+  typedef long long I4 __attribute__((vector_size(32)));
+  constexpr int Group = 8;
   const double bound = this->PlainBound;
   const double inverse = 1.0 / bound;
-  for (int start = 0; start < n; start += Chunk)
+  const double r = this->Blending;
+  const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
+  const V4 boundV = zero + bound;
+  const I4 magnitudeMask = (I4){ 0, 0, 0, 0 } + 0x7fffffffffffffffLL;
+  int start = 0;
+  for (; start + Group <= n; start += Group)
   {
-    const int m = std::min(Chunk, n - start);
-    double t[Chunk], product[Chunk], acc[Chunk];
-    for (int i = 0; i < m; ++i)
-    {
-      t[i] = t0 + (start + i);
-      product[i] = 1.0;
-    }
-    double hi = 0.0, lo = bound;
+    const double base = t0 + start;
+    const V4 ta = { base, t0 + (start + 1), t0 + (start + 2), t0 + (start + 3) };
+    const V4 tb = { t0 + (start + 4), t0 + (start + 5), t0 + (start + 6), t0 + (start + 7) };
+    V4 pa = zero + 1.0, pb = pa;
+    V4 hi = zero, lo = boundV;
     const double* c = coefficients;
     for (const Factor& f : this->Factors)
     {
       const int terms = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
-      for (int i = 0; i < m; ++i)
-      {
-        acc[i] = 0.0;
-      }
+      V4 aa = zero, ab = zero;
       for (int q = terms - 1; q >= 0; --q)
       {
         const double cq = c[q];
-#pragma omp simd
-        for (int i = 0; i < m; ++i)
-        {
-          acc[i] = acc[i] * t[i] + cq;
-        }
+        aa = aa * ta + cq;
+        ab = ab * tb + cq;
       }
-#pragma omp simd reduction(max : hi) reduction(min : lo)
-      for (int i = 0; i < m; ++i)
-      {
-        product[i] *= acc[i];
-        const double a = std::fabs(acc[i]);
-        hi = std::max(hi, a);
-        lo = std::min(lo, a == 0.0 ? bound : a);
-      }
+      pa *= aa;
+      pb *= ab;
+      const V4 ma = (V4)((I4)aa & magnitudeMask), mb = (V4)((I4)ab & magnitudeMask);
+      // As std::max(hi, a) and std::min(lo, a == 0 ? bound : a): a NaN leaves them.
+      hi = hi < ma ? ma : hi;
+      hi = hi < mb ? mb : hi;
+      const V4 za = ma == 0.0 ? boundV : ma, zb = mb == 0.0 ? boundV : mb;
+      lo = za < lo ? za : lo;
+      lo = zb < lo ? zb : lo;
       c += terms;
     }
-    const bool fast = hi <= bound && lo >= inverse;
-    const double r = this->Blending;
-    for (int i = 0; i < m; ++i)
+    double highest = 0.0, lowest = bound;
+    for (int i = 0; i < 4; ++i)
     {
-      if (fast && std::isfinite(product[i]))
+      highest = std::max(highest, hi[i]);
+      lowest = std::min(lowest, lo[i]);
+    }
+    const bool fast = highest <= bound && lowest >= inverse;
+    for (int i = 0; i < Group; ++i)
+    {
+      const double product = i < 4 ? pa[i] : pb[i - 4];
+      if (fast && std::isfinite(product))
       {
-        values[start + i] = Clamp(product[i] - r); // Finish(product, 0)
+        values[start + i] = Clamp(product - r); // Finish(product, 0)
       }
       else
       {
         double p[3];
         pointAt(start + i, p);
-        values[start + i] = this->EvaluateRestricted(coefficients, t[i], p);
+        values[start + i] = this->EvaluateRestricted(coefficients, t0 + (start + i), p);
       }
+    }
+  }
+  // The last points (fewer than a group): one at a time, as the group computes each.
+  for (; start < n; ++start)
+  {
+    const double t = t0 + start;
+    double product = 1.0, highest = 0.0, lowest = bound;
+    const double* c = coefficients;
+    for (const Factor& f : this->Factors)
+    {
+      const int terms = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
+      double acc = 0.0;
+      for (int q = terms - 1; q >= 0; --q)
+      {
+        acc = acc * t + c[q];
+      }
+      product *= acc;
+      const double a = std::fabs(acc);
+      highest = std::max(highest, a);
+      lowest = std::min(lowest, a == 0.0 ? bound : a);
+      c += terms;
+    }
+    if (highest <= bound && lowest >= inverse && std::isfinite(product))
+    {
+      values[start] = Clamp(product - r);
+    }
+    else
+    {
+      double p[3];
+      pointAt(start, p);
+      values[start] = this->EvaluateRestricted(coefficients, t, p);
     }
   }
 }
