@@ -309,17 +309,18 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
     }
     return;
   }
-  // Groups of 8 points held in registers (two vectors of 4 doubles): per factor, its
-  // Horner chain for all 8 points, multiplied into the 8 products, with the smallest
-  // and largest |factor value| of the group; no array round trips through memory. If
-  // every factor value of the group is 0 or within 2^±B, B = min(256, 1000 / factors),
-  // no partial product leaves the normal range, so the plain product has the same bits
-  // as the scaled one (whose rescaling is by exact powers of two); and F must be
-  // finite. Otherwise the point goes through EvaluateRestricted. The same operations in
-  // the same order per point (no FMA: see PISURF_AVX2_CLONES), so the same bits.
+  // Groups of 16 points held in registers (four vectors of 4 doubles: four independent
+  // Horner chains hide each step's latency): per factor, its Horner chain for every
+  // point of the group, multiplied into the products, with the smallest and largest
+  // |factor value| of the group; no array round trips through memory. If every factor
+  // value of the group is 0 or within 2^±B, B = min(256, 1000 / factors), no partial
+  // product leaves the normal range, so the plain product has the same bits as the
+  // scaled one (whose rescaling is by exact powers of two); and F must be finite.
+  // Otherwise the point goes through EvaluateRestricted. The same operations in the
+  // same order per point (no FMA: see PISURF_AVX2_CLONES), so the same bits.
   typedef double V4 __attribute__((vector_size(32)));
   typedef long long I4 __attribute__((vector_size(32)));
-  constexpr int Group = 8;
+  constexpr int Lanes = 4, Vectors = 4, Group = Lanes * Vectors;
   const double bound = this->PlainBound;
   const double inverse = 1.0 / bound;
   const double r = this->Blending;
@@ -329,52 +330,63 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   int start = 0;
   for (; start + Group <= n; start += Group)
   {
-    const double base = t0 + start;
-    const V4 ta = { base, t0 + (start + 1), t0 + (start + 2), t0 + (start + 3) };
-    const V4 tb = { t0 + (start + 4), t0 + (start + 5), t0 + (start + 6), t0 + (start + 7) };
-    V4 pa = zero + 1.0, pb = pa;
+    V4 t[Vectors], product[Vectors];
+    for (int v = 0; v < Vectors; ++v)
+    {
+      for (int l = 0; l < Lanes; ++l)
+      {
+        t[v][l] = t0 + (start + Lanes * v + l);
+      }
+      product[v] = zero + 1.0;
+    }
     V4 hi = zero, lo = boundV;
     const double* c = coefficients;
     for (const Factor& f : this->Factors)
     {
       const int terms = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
-      V4 aa = zero, ab = zero;
+      V4 acc[Vectors];
+      for (int v = 0; v < Vectors; ++v)
+      {
+        acc[v] = zero;
+      }
       for (int q = terms - 1; q >= 0; --q)
       {
         const double cq = c[q];
-        aa = aa * ta + cq;
-        ab = ab * tb + cq;
+        for (int v = 0; v < Vectors; ++v)
+        {
+          acc[v] = acc[v] * t[v] + cq;
+        }
       }
-      pa *= aa;
-      pb *= ab;
-      const V4 ma = (V4)((I4)aa & magnitudeMask), mb = (V4)((I4)ab & magnitudeMask);
-      // As std::max(hi, a) and std::min(lo, a == 0 ? bound : a): a NaN leaves them.
-      hi = hi < ma ? ma : hi;
-      hi = hi < mb ? mb : hi;
-      const V4 za = ma == 0.0 ? boundV : ma, zb = mb == 0.0 ? boundV : mb;
-      lo = za < lo ? za : lo;
-      lo = zb < lo ? zb : lo;
+      for (int v = 0; v < Vectors; ++v)
+      {
+        product[v] *= acc[v];
+        const V4 m = (V4)((I4)acc[v] & magnitudeMask);
+        // As std::max(hi, a) and std::min(lo, a == 0 ? bound : a): a NaN leaves them.
+        hi = hi < m ? m : hi;
+        const V4 z = m == 0.0 ? boundV : m;
+        lo = z < lo ? z : lo;
+      }
       c += terms;
     }
     double highest = 0.0, lowest = bound;
-    for (int i = 0; i < 4; ++i)
+    for (int l = 0; l < Lanes; ++l)
     {
-      highest = std::max(highest, hi[i]);
-      lowest = std::min(lowest, lo[i]);
+      highest = std::max(highest, hi[l]);
+      lowest = std::min(lowest, lo[l]);
     }
     const bool fast = highest <= bound && lowest >= inverse;
     for (int i = 0; i < Group; ++i)
     {
-      const double product = i < 4 ? pa[i] : pb[i - 4];
-      if (fast && std::isfinite(product))
+      const double p = product[i / Lanes][i % Lanes];
+      if (fast && std::isfinite(p))
       {
-        values[start + i] = Clamp(product - r); // Finish(product, 0)
+        values[start + i] = Clamp(p - r); // Finish(product, 0)
       }
       else
       {
-        double p[3];
-        pointAt(start + i, p);
-        values[start + i] = this->EvaluateRestricted(coefficients, t0 + (start + i), p);
+        double x[3];
+        pointAt(start + i, x);
+        values[start + i] = this->EvaluateRestricted(coefficients, t0 + (start + i), x);
       }
     }
   }
