@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
+#include "PiBuffer.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
@@ -18,6 +19,7 @@
 #include "vtkExtentTranslator.h"
 #include "vtkGarbageCollector.h"
 #include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -942,14 +944,25 @@ int vtkPiRayCaster::RequestData(
 
   // PASS 2: the hits' attributes from the exact gradient (of every hit the image
   // shows; the points are then this piece's rows).
-  std::vector<Hit> hits;
-  for (auto& row : rows)
+  // The rows' hits in one array, each row copied by one thread into its place (a
+  // growing vector copied the whole array at every doubling, on one thread).
+  std::vector<vtkIdType> rowOffsets(rows.size() + 1, 0);
+  for (size_t r = 0; r < rows.size(); ++r)
   {
-    hits.insert(hits.end(), row.begin(), row.end());
+    rowOffsets[r + 1] = rowOffsets[r] + static_cast<vtkIdType>(rows[r].size());
   }
+  const vtkIdType n = rowOffsets.back();
+  pisurf::Buffer<Hit> hits;
+  hits.Allocate(static_cast<size_t>(n));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      std::copy(rows[r].begin(), rows[r].end(), hits.GetPointer() + rowOffsets[r]);
+      std::vector<Hit>().swap(rows[r]);
+    }
+  });
   // In the one-piece case every hit is a point.
   const bool extraRows = rowBegin != pieceBegin || rowEnd != pieceEnd;
-  const vtkIdType n = static_cast<vtkIdType>(hits.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(n);
@@ -983,6 +996,16 @@ int vtkPiRayCaster::RequestData(
   factor->SetName("Factor");
   factor->SetNumberOfTuples(n);
   const double probe = 1e-3 * size;
+  double* xyz = vtkDoubleArray::FastDownCast(points->GetData())->GetPointer(0);
+  float* nrmOut = normals->GetPointer(0);
+  double* gradientOut = gradient->GetPointer(0);
+  double* depthOut = depth->GetPointer(0);
+  int* pixelOut = pixel->GetPointer(0);
+  int* viewOut = viewIndex->GetPointer(0);
+  int* hitOut = hitIndex->GetPointer(0);
+  unsigned char* singularOut = singular->GetPointer(0);
+  unsigned char* tangentOut = tangent->GetPointer(0);
+  int* factorOut = factor->GetPointer(0);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType k = begin; k < end; ++k)
     {
@@ -992,17 +1015,20 @@ int vtkPiRayCaster::RequestData(
       // Singular: F grows faster than linearly away from the hit.
       const bool isSingular =
         caster.Attributes(hit.P, probe, this->SingularTolerance, nrm, g, nearest);
-      singular->SetValue(k, isSingular ? 1 : 0);
-      points->SetPoint(k, hit.P);
-      normals->SetTuple3(k, nrm[0], nrm[1], nrm[2]);
-      gradient->SetValue(k, g);
-      depth->SetValue(k, hit.T);
-      pixel->SetTypedComponent(k, 0, hit.I);
-      pixel->SetTypedComponent(k, 1, hit.J);
-      viewIndex->SetValue(k, hit.View);
-      hitIndex->SetValue(k, hit.Index);
-      tangent->SetValue(k, hit.Tangent ? 1 : 0);
-      factor->SetValue(k, nearest);
+      singularOut[k] = isSingular ? 1 : 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        xyz[3 * k + c] = hit.P[c];
+        nrmOut[3 * k + c] = static_cast<float>(nrm[c]);
+      }
+      gradientOut[k] = g;
+      depthOut[k] = hit.T;
+      pixelOut[2 * k] = hit.I;
+      pixelOut[2 * k + 1] = hit.J;
+      viewOut[k] = hit.View;
+      hitOut[k] = hit.Index;
+      tangentOut[k] = hit.Tangent ? 1 : 0;
+      factorOut[k] = nearest;
     }
   });
 
@@ -1051,11 +1077,25 @@ int vtkPiRayCaster::RequestData(
   }
   pd->SetActiveNormals("Normals");
   const vtkIdType kept = output->GetNumberOfPoints();
+  // One vertex cell per point: offsets 0..kept and connectivity 0..kept−1, handed to
+  // the cell array as they are.
   vtkNew<vtkCellArray> verts;
-  for (vtkIdType k = 0; k < kept; ++k)
-  {
-    verts->InsertNextCell(1, &k);
-  }
+  vtkNew<vtkIdTypeArray> vertOffsets, vertIds;
+  vertOffsets->SetNumberOfValues(kept + 1);
+  vertIds->SetNumberOfValues(kept);
+  vtkIdType* offsetOut = vertOffsets->GetPointer(0);
+  vtkIdType* idOut = vertIds->GetPointer(0);
+  vtkSMPTools::For(0, kept + 1, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      offsetOut[k] = k;
+      if (k < kept)
+      {
+        idOut[k] = k;
+      }
+    }
+  });
+  verts->SetData(vertOffsets, vertIds);
   output->SetVerts(verts);
 
   vtkNew<vtkDoubleArray> viewData;
@@ -1089,7 +1129,7 @@ int vtkPiRayCaster::RequestData(
   lap("output");
   if (image)
   {
-    this->Shade(views, rowBegin, rowEnd, hits, normals, singular, image);
+    this->Shade(views, rowBegin, rowEnd, hits.GetPointer(), n, normals, singular, image);
     if (rowBegin != pieceBegin || rowEnd != pieceEnd)
     {
       // Rows beyond the piece (ghost rows asked by the image's consumer, or another
@@ -1117,7 +1157,7 @@ int vtkPiRayCaster::RequestData(
 }
 
 void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int rowEnd,
-  const std::vector<Hit>& hits, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
+  const Hit* hits, vtkIdType hitCount, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
   vtkImageData* image)
 {
   const int w = this->Resolution[0], h = rowEnd - rowBegin;
@@ -1135,7 +1175,7 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
   depth->SetName("Depth");
   depth->SetNumberOfTuples(vtkIdType(w) * h * count);
   depth->Fill(-1.0); // no hit
-  for (size_t k = 0; k < hits.size(); ++k)
+  for (vtkIdType k = 0; k < hitCount; ++k)
   {
     const Hit& hit = hits[k];
     if (hit.Index != 0)

@@ -238,7 +238,7 @@ private:
 #ifndef __VTK_WRAP__
   // Output port 1: the shaded first hits and their depth, one slice per view.
   void Shade(const std::vector<vtkPiRayCasterDetail::View>& views, int rowBegin, int rowEnd,
-    const std::vector<vtkPiRayCasterDetail::Hit>& hits, vtkFloatArray* normals,
+    const vtkPiRayCasterDetail::Hit* hits, vtkIdType hitCount, vtkFloatArray* normals,
     vtkUnsignedCharArray* singular, vtkImageData* image);
 #endif
   vtkPiRayCaster(const vtkPiRayCaster&) = delete;

@@ -156,6 +156,20 @@ void RotationMatrix(const double axis[3], double angleDeg, double R[3][3])
 double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) const
 {
   double q[3], gl[3];
+  if (this->Diagonal)
+  {
+    // (ToLocal's and the transposed product's terms without the zeros of A)
+    for (int j = 0; j < 3; ++j)
+    {
+      q[j] = this->A[j][j] * p[j] + this->B[j];
+    }
+    const double v = this->Poly.EvaluateWithGradient(q, gl);
+    for (int j = 0; j < 3; ++j)
+    {
+      g[j] = this->A[j][j] * gl[j];
+    }
+    return v;
+  }
   this->ToLocal(p, q);
   const double v = this->Poly.EvaluateWithGradient(q, gl);
   for (int j = 0; j < 3; ++j)

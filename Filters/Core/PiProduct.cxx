@@ -163,8 +163,9 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
       return false;
     }
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
-    double q[3];
-    pf.ToLocal(p, q);
+    // ToLocal without the zeros of the diagonal A
+    const double q[3] = { pf.A[0][0] * p[0] + pf.B[0], pf.A[1][1] * p[1] + pf.B[1],
+      pf.A[2][2] * p[2] + pf.B[2] };
     // The axis degree may be below the degree: the rest are zeros.
     for (int m = pf.Poly.GetAxisDegree(axis) + 1; m < n; ++m)
     {
