@@ -1166,45 +1166,59 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
   image->SetExtent(0, w - 1, rowBegin, rowEnd - 1, 0, count - 1);
   image->SetOrigin(0, 0, 0);
   image->SetSpacing(1, 1, 1);
+  const vtkIdType pixels = vtkIdType(w) * h * count;
   vtkNew<vtkUnsignedCharArray> rgb;
   rgb->SetName("Shading");
   rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(vtkIdType(w) * h * count);
-  rgb->Fill(255); // background: white
+  rgb->SetNumberOfTuples(pixels);
   vtkNew<vtkDoubleArray> depth;
   depth->SetName("Depth");
-  depth->SetNumberOfTuples(vtkIdType(w) * h * count);
-  depth->Fill(-1.0); // no hit
-  for (vtkIdType k = 0; k < hitCount; ++k)
-  {
-    const Hit& hit = hits[k];
-    if (hit.Index != 0)
+  depth->SetNumberOfTuples(pixels);
+  unsigned char* colour = rgb->GetPointer(0);
+  double* depthOut = depth->GetPointer(0);
+  // Background (white, no hit) and the first hits, each on the threads: a first hit is
+  // the only one of its pixel.
+  vtkSMPTools::For(0, pixels, [&](vtkIdType begin, vtkIdType end) {
+    std::fill(colour + 3 * begin, colour + 3 * end, static_cast<unsigned char>(255));
+    std::fill(depthOut + begin, depthOut + end, -1.0);
+  });
+  const float* nrm = normals->GetPointer(0);
+  const unsigned char* isSingular = singular->GetPointer(0);
+  vtkSMPTools::For(0, hitCount, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
     {
-      continue;
+      const Hit& hit = hits[k];
+      if (hit.Index != 0)
+      {
+        continue;
+      }
+      const View& v = views[hit.View];
+      const vtkIdType id = (vtkIdType(hit.View) * h + hit.J - rowBegin) * w + hit.I;
+      depthOut[id] = hit.T;
+      unsigned char* rgbOut = colour + 3 * id;
+      if (isSingular[k])
+      {
+        rgbOut[0] = 220;
+        rgbOut[1] = 30;
+        rgbOut[2] = 30;
+        continue;
+      }
+      // A headlight: light along the ray, Lambert plus a Phong highlight, two-sided.
+      double d[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        d[c] = v.Perspective ? v.D[c] + hit.I * v.U[c] + hit.J * v.V[c] : v.D[c];
+      }
+      vtkMath::Normalize(d);
+      const float* nf = nrm + 3 * k;
+      const double lambert = std::fabs(nf[0] * d[0] + nf[1] * d[1] + nf[2] * d[2]);
+      const double value = 0.12 + 0.68 * lambert + 0.2 * std::pow(lambert, 30);
+      const unsigned char c = static_cast<unsigned char>(std::min(255.0, 255.0 * value));
+      rgbOut[0] = c;
+      rgbOut[1] = c;
+      rgbOut[2] = static_cast<unsigned char>(std::min(255, c + 12));
     }
-    const View& v = views[hit.View];
-    const vtkIdType id = (vtkIdType(hit.View) * h + hit.J - rowBegin) * w + hit.I;
-    depth->SetValue(id, hit.T);
-    if (singular->GetValue(static_cast<vtkIdType>(k)))
-    {
-      rgb->SetTypedTuple(id, std::array<unsigned char, 3>{ 220, 30, 30 }.data());
-      continue;
-    }
-    // A headlight: light along the ray, Lambert plus a Phong highlight, two-sided.
-    double d[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      d[c] = v.Perspective ? v.D[c] + hit.I * v.U[c] + hit.J * v.V[c] : v.D[c];
-    }
-    vtkMath::Normalize(d);
-    float nf[3];
-    normals->GetTypedTuple(static_cast<vtkIdType>(k), nf);
-    const double lambert = std::fabs(nf[0] * d[0] + nf[1] * d[1] + nf[2] * d[2]);
-    const double value = 0.12 + 0.68 * lambert + 0.2 * std::pow(lambert, 30);
-    const unsigned char c = static_cast<unsigned char>(std::min(255.0, 255.0 * value));
-    const unsigned char tint[3] = { c, c, static_cast<unsigned char>(std::min(255, c + 12)) };
-    rgb->SetTypedTuple(id, tint);
-  }
+  });
   image->GetPointData()->SetScalars(rgb);
   image->GetPointData()->AddArray(depth);
 }
