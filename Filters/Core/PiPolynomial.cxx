@@ -16,13 +16,6 @@ bool TermLess(const Monomial& a, const Monomial& b)
   return std::tie(a.I, a.J, a.K) < std::tie(b.I, b.J, b.K);
 }
 
-// The value of a dense quadric (coefficients 1, x, y, z, x², y², z², xy, xz, yz).
-inline double QuadricValue(const double* q, double x, double y, double z)
-{
-  return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
-    z * (q[3] + q[6] * z);
-}
-
 // Powers x^0..x^n of one coordinate.
 inline void Powers(double x, int n, double* out)
 {
@@ -388,22 +381,7 @@ void Polynomial3::EvaluateStar(
 {
   if (this->Quadric)
   {
-    // Along an axis a quadric is its exact second-order Taylor polynomial:
-    // P(p ± h·e_a) = P(p) ± h·∂_a P + h²·Q_aa.
-    const double* q = this->Q;
-    const double x = p[0], y = p[1], z = p[2];
-    const double v = QuadricValue(q, x, y, z);
-    values[0] = v;
-    g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
-    g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
-    g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double h = step[a];
-      const double curvature = h * h * q[4 + a];
-      values[1 + 2 * a] = (v + curvature) - h * g[a];
-      values[2 + 2 * a] = (v + curvature) + h * g[a];
-    }
+    QuadricStar(this->Q, p, step, values, g);
     return;
   }
   const int n = std::max(this->Degree, 0);

@@ -81,6 +81,11 @@ public:
   double Evaluate(const double p[3]) const;
   /// Value and gradient at p. Cost: O(degree + 3·terms).
   double EvaluateWithGradient(const double p[3], double g[3]) const;
+  /// Degree <= 2 (spheres, cylinders, quadrics): GetQuadric() gives its dense
+  /// coefficients 1, x, y, z, x², y², z², xy, xz, yz (all 0 for the zero polynomial),
+  /// for QuadricStar.
+  bool IsQuadric() const { return this->Quadric; }
+  const double* GetQuadric() const { return this->Q; }
   /// At p and at the six points p ± step[a]·e_a, with the gradient at p, in one pass:
   /// the terms are summed by the power of each variable separately (three partial-sum
   /// polynomials, 6 multiplications per term), then each axis is a univariate Horner
@@ -153,6 +158,34 @@ private:
   template <bool Inner>
   double AxisSum(int a, int m, const double* lo, const double* hi) const;
 };
+
+/// The value of a dense quadric (coefficients 1, x, y, z, x², y², z², xy, xz, yz).
+inline double QuadricValue(const double* q, double x, double y, double z)
+{
+  return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
+    z * (q[3] + q[6] * z);
+}
+
+/// Polynomial3::EvaluateStar of a quadric (dense coefficients q): along an axis a
+/// quadric is its exact second-order Taylor polynomial, P(p ± h·e_a) = P(p) ± h·∂_a P +
+/// h²·Q_aa. Inline, for callers that evaluate many quadrics per point.
+inline void QuadricStar(
+  const double* q, const double p[3], const double step[3], double values[7], double g[3])
+{
+  const double x = p[0], y = p[1], z = p[2];
+  const double v = QuadricValue(q, x, y, z);
+  values[0] = v;
+  g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
+  g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
+  g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double h = step[a];
+    const double curvature = h * h * q[4 + a];
+    values[1 + 2 * a] = (v + curvature) - h * g[a];
+    values[2 + 2 * a] = (v + curvature) + h * g[a];
+  }
+}
 
 /// x^n for n >= 0 by repeated squaring (exact for small n, much cheaper than std::pow).
 inline double IntegerPower(double x, int n)

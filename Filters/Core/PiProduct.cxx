@@ -107,12 +107,18 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
     1.0, std::min(256, 1000 / std::max<int>(1, static_cast<int>(this->Factors.size()))));
   this->AllPolynomial = std::all_of(
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
-  for (Factor& f : this->Factors)
+  this->StarQuadric.assign(this->Factors.size(), 0);
+  for (size_t k = 0; k < this->Factors.size(); ++k)
   {
+    Factor& f = this->Factors[k];
     if (f.IsPolynomial)
     {
       f.Polynomial.PrepareIntervals();
       this->LineCoefficients += static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1;
+      // PolynomialFactor::EvaluateStar's one-pass case (a diagonal frame) of a quadric.
+      const double(*A)[3] = f.Polynomial.A;
+      this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && A[0][1] == 0 && A[0][2] == 0 &&
+        A[1][0] == 0 && A[1][2] == 0 && A[2][0] == 0 && A[2][1] == 0;
     }
   }
 }
@@ -720,7 +726,21 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
     double local[7], localG[3];
     double* v = plain ? values[k] : local;
     double* gi = plain ? gradients[k] : localG;
-    if (f.IsPolynomial)
+    if (this->StarQuadric[k])
+    {
+      // PolynomialFactor::EvaluateStar's arithmetic for a quadric in a diagonal frame,
+      // inline (the most common factor: two calls per factor cost as much as the work).
+      const PolynomialFactor& pf = f.Polynomial;
+      double q[3], gl[3];
+      pf.ToLocal(p, q);
+      const double step[3] = { probe * pf.A[0][0], probe * pf.A[1][1], probe * pf.A[2][2] };
+      QuadricStar(pf.Poly.GetQuadric(), q, step, v, gl);
+      for (int a = 0; a < 3; ++a)
+      {
+        gi[a] = pf.A[a][a] * gl[a];
+      }
+    }
+    else if (f.IsPolynomial)
     {
       f.Polynomial.EvaluateStar(p, probe, v, gi);
     }
@@ -735,19 +755,23 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
       }
     }
     const double fi = v[0];
-    KeepNearest(fi, gi, static_cast<int>(k), nearest, best);
     if (plain)
     {
-      for (int c = 0; c < 10 && plain; ++c)
+      // (the nearest factor is chosen after the loop from the stored values: no
+      // data-dependent branch between the factors' evaluations)
+      bool inRange = true;
+      for (int c = 0; c < 10; ++c)
       {
         const double a = std::fabs(c < 7 ? v[c] : gi[c - 7]);
-        plain = a == 0.0 || (a >= 0x1p-64 && a <= 0x1p64);
+        inRange &= a == 0.0 || (a >= 0x1p-64 && a <= 0x1p64);
       }
+      plain = inRange;
       if (!plain)
       {
         // Out of the plain range: the factors so far go to the scaled form.
         for (size_t q = 0; q <= k; ++q)
         {
+          KeepNearest(values[q][0], gradients[q], static_cast<int>(q), nearest, best);
           s.Multiply(values[q][0], gradients[q]);
           for (int a = 0; a < 6; ++a)
           {
@@ -758,6 +782,7 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
     }
     else
     {
+      KeepNearest(fi, gi, static_cast<int>(k), nearest, best);
       s.Multiply(fi, gi);
       for (int a = 0; a < 6; ++a)
       {
@@ -767,6 +792,10 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
   }
   if (plain)
   {
+    for (size_t k = 0; k < count; ++k)
+    {
+      KeepNearest(values[k][0], gradients[k], static_cast<int>(k), nearest, best);
+    }
     for (size_t k = 0; k < count; ++k)
     {
       const double f = values[k][0];
