@@ -318,12 +318,7 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
 {
   if (this->Quadric)
   {
-    const double x = p[0], y = p[1], z = p[2];
-    const double* q = this->Q;
-    g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
-    g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
-    g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
-    return QuadricValue(q, x, y, z);
+    return QuadricWithGradient(this->Q, p, g);
   }
   // Power tables shifted by one, with a zero below x^0: px[i − 1] is 0 for i = 0, so
   // every term adds its three partials without a branch (c·i is 0 there anyway).

@@ -166,6 +166,16 @@ inline double QuadricValue(const double* q, double x, double y, double z)
     z * (q[3] + q[6] * z);
 }
 
+/// Polynomial3::EvaluateWithGradient of a quadric (dense coefficients q), inline.
+inline double QuadricWithGradient(const double* q, const double p[3], double g[3])
+{
+  const double x = p[0], y = p[1], z = p[2];
+  g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
+  g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
+  g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+  return QuadricValue(q, x, y, z);
+}
+
 /// Polynomial3::EvaluateStar of a quadric (dense coefficients q): along an axis a
 /// quadric is its exact second-order Taylor polynomial, P(p ± h·e_a) = P(p) ± h·∂_a P +
 /// h²·Q_aa. Inline, for callers that evaluate many quadrics per point.

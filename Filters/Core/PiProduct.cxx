@@ -635,7 +635,26 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
     bool plain = true;
     for (size_t k = 0; k < count; ++k)
     {
-      f[k] = this->Factors[k].Polynomial.EvaluateWithGradient(p, g[k]);
+      const PolynomialFactor& pf = this->Factors[k].Polynomial;
+      if (this->StarQuadric[k])
+      {
+        // PolynomialFactor::EvaluateWithGradient's arithmetic for a quadric in a
+        // diagonal frame, inline.
+        double q[3], gl[3];
+        for (int j = 0; j < 3; ++j)
+        {
+          q[j] = pf.A[j][j] * p[j] + pf.B[j];
+        }
+        f[k] = QuadricWithGradient(pf.Poly.GetQuadric(), q, gl);
+        for (int j = 0; j < 3; ++j)
+        {
+          g[k][j] = pf.A[j][j] * gl[j];
+        }
+      }
+      else
+      {
+        f[k] = pf.EvaluateWithGradient(p, g[k]);
+      }
       const double a = std::fabs(f[k]);
       plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
         std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
