@@ -641,22 +641,7 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
   {
     // Q: 1, x, y, z, x², y², z², xy, xz, yz. With u, w the fixed variables of this axis:
     // c0 + c1·s + c2·s².
-    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
-    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
-    const double* Q = this->Q;
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    const double qu = q[u], qw = q[w];
-    // (Written one by one: a loop of n + 1 copies becomes a library memcpy call.)
-    out[0] = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
-      Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
-    if (n >= 1)
-    {
-      out[1] = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
-    }
-    if (n >= 2)
-    {
-      out[2] = Q[Square[axis]];
-    }
+    QuadricOnAxis(this->Q, q, axis, n, out);
     return;
   }
   std::fill(out, out + n + 1, 0.0);

@@ -166,6 +166,27 @@ inline double QuadricValue(const double* q, double x, double y, double z)
     z * (q[3] + q[6] * z);
 }
 
+/// Polynomial3::RestrictToAxis of a quadric (dense coefficients Q, axis degree n on
+/// `axis`), inline: out[0..n] of s -> Q(p with p[axis] = s) = c0 + c1·s + c2·s².
+inline void QuadricOnAxis(const double* Q, const double p[3], int axis, int n, double* out)
+{
+  static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
+  static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const double qu = p[u], qw = p[w];
+  // (Written one by one: a loop of n + 1 copies becomes a library memcpy call.)
+  out[0] = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
+    Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
+  if (n >= 1)
+  {
+    out[1] = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
+  }
+  if (n >= 2)
+  {
+    out[2] = Q[Square[axis]];
+  }
+}
+
 /// Polynomial3::EvaluateWithGradient of a quadric (dense coefficients q), inline.
 inline double QuadricWithGradient(const double* q, const double p[3], double g[3])
 {

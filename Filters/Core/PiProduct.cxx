@@ -173,11 +173,19 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
     const double q[3] = { pf.A[0][0] * p[0] + pf.B[0], pf.A[1][1] * p[1] + pf.B[1],
       pf.A[2][2] * p[2] + pf.B[2] };
     // The axis degree may be below the degree: the rest are zeros.
-    for (int m = pf.Poly.GetAxisDegree(axis) + 1; m < n; ++m)
+    const int axisDegree = pf.Poly.GetAxisDegree(axis);
+    for (int m = axisDegree + 1; m < n; ++m)
     {
       coefficients[m] = 0.0;
     }
-    pf.Poly.RestrictToAxis(q, axis, coefficients);
+    if (this->StarQuadric[&f - this->Factors.data()] && n > 1)
+    {
+      QuadricOnAxis(pf.Poly.GetQuadric(), q, axis, axisDegree, coefficients); // inline
+    }
+    else
+    {
+      pf.Poly.RestrictToAxis(q, axis, coefficients);
+    }
     coefficients += n;
   }
   return true;
