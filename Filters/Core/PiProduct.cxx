@@ -405,36 +405,12 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       }
     }
   }
-  // The last points (fewer than a group): one at a time, as the group computes each.
+  // The last points (fewer than a group): EvaluateRestricted, whose bits the groups have.
   for (; start < n; ++start)
   {
-    const double t = t0 + start;
-    double product = 1.0, highest = 0.0, lowest = bound;
-    const double* c = coefficients;
-    for (const Factor& f : this->Factors)
-    {
-      const int terms = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
-      double acc = 0.0;
-      for (int q = terms - 1; q >= 0; --q)
-      {
-        acc = acc * t + c[q];
-      }
-      product *= acc;
-      const double a = std::fabs(acc);
-      highest = std::max(highest, a);
-      lowest = std::min(lowest, a == 0.0 ? bound : a);
-      c += terms;
-    }
-    if (highest <= bound && lowest >= inverse && std::isfinite(product))
-    {
-      values[start] = Clamp(product - r);
-    }
-    else
-    {
-      double p[3];
-      pointAt(start, p);
-      values[start] = this->EvaluateRestricted(coefficients, t, p);
-    }
+    double p[3];
+    pointAt(start, p);
+    values[start] = this->EvaluateRestricted(coefficients, t0 + start, p);
   }
 }
 

@@ -495,6 +495,28 @@ struct FastWorkspace
 // Levels of re-expansion (see below), each with its own buffers.
 constexpr int FastLevels = 4;
 
+// Π p_i(t) − r and its derivative: Horner for each factor and its derivative, then the
+// product rule (Newton's function on a monotone piece).
+inline double ProductMinusWithSlope(const double* coefficients, const int* counts, int factors,
+  double r, double t, double& derivative)
+{
+  double v = 1.0, dv = 0.0;
+  for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+  {
+    const double* c = coefficients + offset;
+    double f = 0.0, df = 0.0;
+    for (int k = counts[i] - 1; k >= 0; --k)
+    {
+      df = df * t + f;
+      f = f * t + c[k];
+    }
+    dv = dv * f + v * df;
+    v *= f;
+  }
+  derivative = dv;
+  return v - r;
+}
+
 // At most this many factors take QuickSegment (its enclosures live on the stack).
 constexpr int QuickFactors = 16;
 
@@ -639,21 +661,7 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
     return true; // monotone without a change of sign: no root
   }
   auto phid = [&](double t, double& derivative) {
-    double v = 1.0, dv = 0.0;
-    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
-    {
-      const double* c = coefficients + offset;
-      double fi = 0.0, dfi = 0.0;
-      for (int k = counts[i] - 1; k >= 0; --k)
-      {
-        dfi = dfi * t + fi;
-        fi = fi * t + c[k];
-      }
-      dv = dv * fi + v * dfi;
-      v *= fi;
-    }
-    derivative = dv;
-    return v - r;
+    return ProductMinusWithSlope(coefficients, counts, factors, r, t, derivative);
   };
   cluster.Add(NewtonRoot(phid, t0, t1, va, options.Tolerance, t0 + (t1 - t0) * va / (va - vb)),
     false, va, vb);
@@ -824,22 +832,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   }
   const double* scaled = w.Scaled.data();
   auto phid = [&](double t, double& derivative) {
-    double v = 1.0, dv = 0.0;
-    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
-    {
-      // Horner for the factor and its derivative, then the product rule.
-      const double* c = scaled + offset;
-      double f = 0.0, df = 0.0;
-      for (int k = counts[i] - 1; k >= 0; --k)
-      {
-        df = df * t + f;
-        f = f * t + c[k];
-      }
-      dv = dv * f + v * df;
-      v *= f;
-    }
-    derivative = dv;
-    return v - rs;
+    return ProductMinusWithSlope(scaled, counts, factors, rs, t, derivative);
   };
   stack.clear();
   stack.push_back({ t0, t1, 0, 0 });

@@ -42,6 +42,54 @@ std::vector<RayRoot> Roots(const std::vector<std::vector<double>>& factors, doub
   EXPECT_TRUE(FindRayRoots(factors, r, t0, t1, options, roots));
   return roots;
 }
+// The product in long double (Horner per factor) minus r.
+long double ProductMinus(const std::vector<std::vector<double>>& factors, double r, double t)
+{
+  long double p = 1.0L;
+  for (const auto& f : factors)
+  {
+    long double v = 0.0L;
+    for (size_t k = f.size(); k-- > 0;)
+    {
+      v = v * t + f[k];
+    }
+    p *= v;
+  }
+  return p - r;
+}
+
+// Against `samples` long-double samples of F on [0, length]: every sign change holds a
+// root (within the tolerance), and every crossing root has F of opposite signs a
+// tolerance before and after it. Returns the number of sign changes seen.
+int ExpectRootsAtSignChanges(const std::vector<std::vector<double>>& factors, double r,
+  double length, int samples, const std::vector<RayRoot>& roots, int trial)
+{
+  const double tolerance = RayRootOptions().Tolerance;
+  auto F = [&](double t) { return ProductMinus(factors, r, t); };
+  int changes = 0;
+  long double previous = F(0.0);
+  for (int s = 1; s <= samples; ++s)
+  {
+    const double ta = length * (s - 1) / samples, tb = length * s / samples;
+    const long double value = F(tb);
+    if ((value < 0) != (previous < 0))
+    {
+      EXPECT_TRUE(std::any_of(roots.begin(), roots.end(), [&](const RayRoot& x) {
+        return x.T >= ta - tolerance && x.T <= tb + tolerance;
+      })) << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
+      ++changes;
+    }
+    previous = value;
+  }
+  for (const RayRoot& x : roots)
+  {
+    if (!x.Tangent)
+    {
+      EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0) << "trial " << trial << " root " << x.T;
+    }
+  }
+  return changes;
+}
 }
 
 TEST(RayRoots, SphereThroughTheCentre)
@@ -213,37 +261,7 @@ TEST(RayRoots, ManyFactorsBlendedAcrossALongSegment)
     }
     const double r = 0.01, length = 13.0;
     const auto roots = Roots(factors, r, 0.0, length);
-    auto F = [&](double t) {
-      long double p = 1.0L;
-      for (const auto& f : factors)
-      {
-        p *= static_cast<long double>(f[0]) + t * (static_cast<long double>(f[1]) + t * f[2]);
-      }
-      return p - r;
-    };
-    const double tolerance = RayRootOptions().Tolerance;
-    const int samples = 40000;
-    long double previous = F(0.0);
-    for (int s = 1; s <= samples; ++s)
-    {
-      const double ta = length * (s - 1) / samples, tb = length * s / samples;
-      const long double value = F(tb);
-      if ((value < 0) != (previous < 0))
-      {
-        EXPECT_TRUE(std::any_of(roots.begin(), roots.end(), [&](const RayRoot& x) {
-          return x.T >= ta - tolerance && x.T <= tb + tolerance;
-        })) << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
-        ++checked;
-      }
-      previous = value;
-    }
-    for (const RayRoot& x : roots)
-    {
-      if (!x.Tangent)
-      {
-        EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0) << "trial " << trial << " root " << x.T;
-      }
-    }
+    checked += ExpectRootsAtSignChanges(factors, r, length, 40000, roots, trial);
   }
   EXPECT_GT(checked, 40);
 }
@@ -308,41 +326,7 @@ TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
       EXPECT_EQ(pieces[k].Tangent, whole[k].Tangent) << "trial " << trial << " root " << k;
       ++compared;
     }
-    auto F = [&](double t) {
-      long double p = 1.0L;
-      for (const auto& f : factors)
-      {
-        long double v = 0.0L;
-        for (size_t k = f.size(); k-- > 0;)
-        {
-          v = v * t + f[k];
-        }
-        p *= v;
-      }
-      return p - r;
-    };
-    const int samples = 20000;
-    long double previous = F(0.0);
-    for (int s = 1; s <= samples; ++s)
-    {
-      const double ta = length * (s - 1) / samples, tb = length * s / samples;
-      const long double value = F(tb);
-      if ((value < 0) != (previous < 0))
-      {
-        EXPECT_TRUE(std::any_of(pieces.begin(), pieces.end(), [&](const RayRoot& x) {
-          return x.T >= ta - tolerance && x.T <= tb + tolerance;
-        })) << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
-        ++changes;
-      }
-      previous = value;
-    }
-    for (const RayRoot& x : pieces)
-    {
-      if (!x.Tangent)
-      {
-        EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0) << "trial " << trial << " root " << x.T;
-      }
-    }
+    changes += ExpectRootsAtSignChanges(factors, r, length, 20000, pieces, trial);
   }
   EXPECT_GT(compared, 100);
   EXPECT_GT(changes, 100);
