@@ -271,10 +271,11 @@ TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
   // The ray caster searches octree leaves' short depth ranges, which a quick test
   // decides from centred forms of the factors (one sign, or monotone with a sign change)
   // before any Bernstein expansion. Cut into 97 pieces (leaf-like lengths, ends at
-  // arbitrary places), products of spheres and tori at r = 0.01, 1 and 10 must give the
-  // roots the whole ray gives (each within 2 tolerances, a root at a shared end counted
-  // once), every sign change among 20000 long-double samples must hold one, and every
-  // crossing root must have opposite signs a tolerance either side.
+  // arbitrary places; in every other trial also cut exactly at the whole ray's roots, so
+  // that pieces end on a root), products of spheres and tori at r = 0, 0.01, 1 and 10 must
+  // give the roots the whole ray gives (each within 2 tolerances, a root at a shared end
+  // counted once), every sign change among 20000 long-double samples must hold one, and
+  // every crossing root must have opposite signs a tolerance either side.
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
   const double tolerance = RayRootOptions().Tolerance;
@@ -301,16 +302,28 @@ TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
         factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
       }
     }
-    const double r = trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0);
+    const double r = trial % 5 == 4 ? 0.0 : (trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0));
     const double length = 8.0;
     const auto whole = Roots(factors, r, 0.0, length);
-    std::vector<RayRoot> pieces;
+    // Uneven cuts: the ends fall anywhere relative to the roots (or on them).
     const int n = 97;
-    for (int s = 0; s < n; ++s)
+    std::vector<double> cuts{ 0.0, length };
+    for (int s = 0; s < n - 1; ++s)
     {
-      // Uneven cuts: the ends fall anywhere relative to the roots.
-      const double a = length * (s + (s == 0 ? 0.0 : 0.37)) / n;
-      const double b = s == n - 1 ? length : length * (s + 1.37) / n;
+      cuts.push_back(length * (s + 0.37) / n);
+    }
+    if (trial % 2 == 1)
+    {
+      for (const RayRoot& x : whole)
+      {
+        cuts.push_back(x.T);
+      }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<RayRoot> pieces;
+    for (size_t s = 0; s + 1 < cuts.size(); ++s)
+    {
+      const double a = cuts[s], b = cuts[s + 1];
       for (const RayRoot& x : Roots(factors, r, a, b))
       {
         if (pieces.empty() || x.T - pieces.back().T > 2.0 * tolerance)
