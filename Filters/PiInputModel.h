@@ -134,19 +134,12 @@ struct PiMoleculeInput
   /// false with the reason if `requested` is not a valid box.
   bool ResolveBounds(const double requested[6], double bounds[6], std::string& error) const
   {
-    if (std::all_of(requested, requested + 6, [](double v) { return v == 0; }))
+    if (pisurf::UnsetBounds(requested))
     {
       std::copy(this->Bounds, this->Bounds + 6, bounds);
       return true;
     }
-    if (!pisurf::ValidBounds(requested))
-    {
-      error = "bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero for the "
-              "molecule's)";
-      return false;
-    }
-    std::copy(requested, requested + 6, bounds);
-    return true;
+    return pisurf::TakeBounds(requested, "molecule's", bounds, error);
   }
 
   /// The molecule's field with cells over `region`; null with the reason if it cannot be

@@ -211,7 +211,7 @@ bool vtkPiPrimitiveSource::ResolveBounds(double bounds[6], std::string& error)
     error = std::string("Invalid ") + p->GetTypeAsString() + ": " + p->GetErrorMessage();
     return false;
   }
-  const bool automatic = std::all_of(this->Bounds, this->Bounds + 6, [](double b) { return b == 0; });
+  const bool automatic = pisurf::UnsetBounds(this->Bounds);
   if (!automatic)
   {
     if (!pisurf::ValidBounds(this->Bounds))

@@ -71,7 +71,7 @@ int vtkPiProduct::RequestData(
     vtkErrorMacro(<< "Cannot form the product: " << error);
     return 0;
   }
-  if (!std::all_of(this->Bounds, this->Bounds + 6, [](double b) { return b == 0; }))
+  if (!pisurf::UnsetBounds(this->Bounds))
   {
     if (!pisurf::ValidBounds(this->Bounds))
     {

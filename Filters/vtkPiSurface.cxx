@@ -586,18 +586,11 @@ bool vtkPiSurface::GetModelBounds(double bounds[6])
 
 bool vtkPiSurface::ResolveBounds(const double requested[6], double bounds[6])
 {
-  if (std::all_of(requested, requested + 6, [](double v) { return v == 0; }))
+  if (pisurf::UnsetBounds(requested))
   {
     return this->GetModelBounds(bounds);
   }
-  if (!pisurf::ValidBounds(requested))
-  {
-    this->Internals->Error =
-      "bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero for the model's)";
-    return false;
-  }
-  std::copy(requested, requested + 6, bounds);
-  return true;
+  return pisurf::TakeBounds(requested, "model's", bounds, this->Internals->Error);
 }
 
 bool vtkPiSurface::GetCoreModel(pisurf::Model& model)

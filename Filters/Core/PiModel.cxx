@@ -331,6 +331,24 @@ bool ValidBounds(const double b[6])
   return true;
 }
 
+bool UnsetBounds(const double requested[6])
+{
+  return std::all_of(requested, requested + 6, [](double v) { return v == 0; });
+}
+
+bool TakeBounds(const double requested[6], const char* own, double bounds[6], std::string& error)
+{
+  if (!ValidBounds(requested))
+  {
+    error = std::string("bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all zero "
+                        "for the ") +
+      own + ")";
+    return false;
+  }
+  std::copy(requested, requested + 6, bounds);
+  return true;
+}
+
 bool ParseModel(const std::string& text, Model& model, std::string& error)
 {
   json j;

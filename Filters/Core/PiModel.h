@@ -47,6 +47,11 @@ bool ParseModel(const std::string& text, Model& model, std::string& error);
 std::string WriteModel(const Model& model);
 /// Checks bounds: six finite numbers with x0 < x1, y0 < y1, z0 < z1 and finite sides.
 bool ValidBounds(const double b[6]);
+/// A filter's Bounds setting all zero: "use the data's own box".
+bool UnsetBounds(const double requested[6]);
+/// `requested` copied into `bounds` if it is a valid box; false with the reason in
+/// `error` if not (naming `own`, what all-zero bounds stand for: "model's", ...).
+bool TakeBounds(const double requested[6], const char* own, double bounds[6], std::string& error);
 
 /// The product of several models (the ParaView "Pi Product"): their primitives in
 /// order, the one blending r given, the parameters merged. A parameter name that a later
