@@ -159,10 +159,7 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
   if (this->Diagonal)
   {
     // (ToLocal's and the transposed product's terms without the zeros of A)
-    for (int j = 0; j < 3; ++j)
-    {
-      q[j] = this->A[j][j] * p[j] + this->B[j];
-    }
+    this->ToLocalDiagonal(p, q);
     const double v = this->Poly.EvaluateWithGradient(q, gl);
     for (int j = 0; j < 3; ++j)
     {

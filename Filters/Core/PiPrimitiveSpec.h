@@ -118,11 +118,44 @@ struct PolynomialFactor
       q[i] = this->A[i][0] * p[0] + this->A[i][1] * p[1] + this->A[i][2] * p[2] + this->B[i];
     }
   }
+  /// ToLocal for a diagonal A (Diagonal), without its zeros.
+  void ToLocalDiagonal(const double p[3], double q[3]) const
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      q[i] = this->A[i][i] * p[i] + this->B[i];
+    }
+  }
   double Evaluate(const double p[3]) const
   {
     double q[3];
     this->ToLocal(p, q);
     return this->Poly.Evaluate(q);
+  }
+  /// EvaluateWithGradient and EvaluateStar inline, for a quadric (Poly.IsQuadric()) in a
+  /// diagonal frame (Diagonal): the same arithmetic, so the same bits, without the two
+  /// calls (for callers that evaluate many factors per point).
+  double QuadricWithGradient(const double p[3], double g[3]) const
+  {
+    double q[3], gl[3];
+    this->ToLocalDiagonal(p, q);
+    const double v = pisurf::QuadricWithGradient(this->Poly.GetQuadric(), q, gl);
+    for (int j = 0; j < 3; ++j)
+    {
+      g[j] = this->A[j][j] * gl[j];
+    }
+    return v;
+  }
+  void QuadricStar(const double p[3], double h, double values[7], double g[3]) const
+  {
+    double q[3], gl[3];
+    this->ToLocal(p, q);
+    const double step[3] = { h * this->A[0][0], h * this->A[1][1], h * this->A[2][2] };
+    pisurf::QuadricStar(this->Poly.GetQuadric(), q, step, values, gl);
+    for (int a = 0; a < 3; ++a)
+    {
+      g[a] = this->A[a][a] * gl[a];
+    }
   }
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// f and ∇f at p and f at the six points p ± h·e_a (world axes), as

@@ -115,10 +115,8 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
     {
       f.Polynomial.PrepareIntervals();
       this->LineCoefficients += static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1;
-      // PolynomialFactor::EvaluateStar's one-pass case (a diagonal frame) of a quadric.
-      const double(*A)[3] = f.Polynomial.A;
-      this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && A[0][1] == 0 && A[0][2] == 0 &&
-        A[1][0] == 0 && A[1][2] == 0 && A[2][0] == 0 && A[2][1] == 0;
+      // (PrepareIntervals sets Diagonal)
+      this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && f.Polynomial.Diagonal;
     }
   }
 }
@@ -169,9 +167,8 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
       return false;
     }
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
-    // ToLocal without the zeros of the diagonal A
-    const double q[3] = { pf.A[0][0] * p[0] + pf.B[0], pf.A[1][1] * p[1] + pf.B[1],
-      pf.A[2][2] * p[2] + pf.B[2] };
+    double q[3];
+    pf.ToLocalDiagonal(p, q);
     // The axis degree may be below the degree: the rest are zeros.
     const int axisDegree = pf.Poly.GetAxisDegree(axis);
     for (int m = axisDegree + 1; m < n; ++m)
@@ -620,25 +617,8 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
     for (size_t k = 0; k < count; ++k)
     {
       const PolynomialFactor& pf = this->Factors[k].Polynomial;
-      if (this->StarQuadric[k])
-      {
-        // PolynomialFactor::EvaluateWithGradient's arithmetic for a quadric in a
-        // diagonal frame, inline.
-        double q[3], gl[3];
-        for (int j = 0; j < 3; ++j)
-        {
-          q[j] = pf.A[j][j] * p[j] + pf.B[j];
-        }
-        f[k] = QuadricWithGradient(pf.Poly.GetQuadric(), q, gl);
-        for (int j = 0; j < 3; ++j)
-        {
-          g[k][j] = pf.A[j][j] * gl[j];
-        }
-      }
-      else
-      {
-        f[k] = pf.EvaluateWithGradient(p, g[k]);
-      }
+      f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
+                                  : pf.EvaluateWithGradient(p, g[k]);
       const double a = std::fabs(f[k]);
       plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
         std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
@@ -731,17 +711,8 @@ void ProductKernel::EvaluateVertexStar(const double p[3], double probe, double n
     double* gi = plain ? gradients[k] : localG;
     if (this->StarQuadric[k])
     {
-      // PolynomialFactor::EvaluateStar's arithmetic for a quadric in a diagonal frame,
-      // inline (the most common factor: two calls per factor cost as much as the work).
-      const PolynomialFactor& pf = f.Polynomial;
-      double q[3], gl[3];
-      pf.ToLocal(p, q);
-      const double step[3] = { probe * pf.A[0][0], probe * pf.A[1][1], probe * pf.A[2][2] };
-      QuadricStar(pf.Poly.GetQuadric(), q, step, v, gl);
-      for (int a = 0; a < 3; ++a)
-      {
-        gi[a] = pf.A[a][a] * gl[a];
-      }
+      // Inline: the most common factor, whose two calls cost as much as its work.
+      f.Polynomial.QuadricStar(p, probe, v, gi);
     }
     else if (f.IsPolynomial)
     {

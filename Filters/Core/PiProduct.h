@@ -179,7 +179,8 @@ private:
   double Blending;
   bool AllPolynomial;
   size_t LineCoefficients = 0;
-  // Per factor: a quadric in a diagonal frame (EvaluateVertexStar evaluates it inline).
+  // Per factor: a quadric in a diagonal frame (evaluated inline by EvaluateVertex,
+  // EvaluateVertexStar and RestrictToAxis).
   std::vector<unsigned char> StarQuadric;
 };
 }
