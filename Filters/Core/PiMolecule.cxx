@@ -1645,6 +1645,11 @@ struct MoleculeField::RaySearch
   std::vector<Piece>& Stack;
   std::vector<int>& Pool;
   std::vector<int>& Keep;
+  // Monotone's factor and slope enclosures and product buffers.
+  std::vector<Interval>& Values;
+  std::vector<Interval>& Slopes;
+  std::vector<ScaledInterval>& Prefix;
+  std::vector<ScaledInterval>& Suffix;
   bool Searching = false;
 
   RaySearch(const MoleculeField& m, const double* o, const double* d, const RayRootOptions& options,
@@ -1857,10 +1862,6 @@ struct MoleculeField::RaySearch
     }
     return ProductDerivativeHasOneSign(g.data(), dg.data(), g.size(), this->Prefix, this->Suffix);
   }
-  std::vector<Interval>& Values;
-  std::vector<Interval>& Slopes;
-  std::vector<ScaledInterval>& Prefix;
-  std::vector<ScaledInterval>& Suffix;
 
   // Whether F changes sign between values va and vb (a crossing root lies between).
   static bool Crosses(double va, double vb) { return (va < 0 && vb > 0) || (va > 0 && vb < 0); }
