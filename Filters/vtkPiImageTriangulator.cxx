@@ -1694,6 +1694,11 @@ int vtkPiImageTriangulator::RequestData(
     }
     T.ChooseDiagonals = this->EdgeFlipRounds > 0;
     T.Probe = 1e-3 * T.Size;
+    if (T.Caster && box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5])
+    {
+      // Points computed off the rays' box take the probes (see RayCaster::PrepareProbes).
+      T.Caster->PrepareProbes(box, T.Probe);
+    }
     T.SingularTolerance = this->SingularTolerance;
     T.RunLattice(L);
   }

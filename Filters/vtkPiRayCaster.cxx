@@ -741,7 +741,7 @@ int vtkPiRayCaster::RequestData(
   {
     casterPointer = std::make_unique<pisurf::RayCaster>(*kernel);
   }
-  const pisurf::RayCaster& caster = *casterPointer;
+  pisurf::RayCaster& caster = *casterPointer;
   // Orthographic views of polynomial products restrict their rays from per-view
   // compositions (pisurf::RayGrid), about the middle of the box along the view.
   std::vector<std::unique_ptr<pisurf::RayGrid>> grids(views.size());
@@ -996,6 +996,24 @@ int vtkPiRayCaster::RequestData(
   factor->SetName("Factor");
   factor->SetNumberOfTuples(n);
   const double probe = 1e-3 * size;
+  // The hits' box: there the attributes may skip the singularity probes where the
+  // factors prove a hit regular (RayCaster::PrepareProbes).
+  {
+    double hitBox[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        hitBox[2 * c] = std::min(hitBox[2 * c], hits[k].P[c]);
+        hitBox[2 * c + 1] = std::max(hitBox[2 * c + 1], hits[k].P[c]);
+      }
+    }
+    if (n > 0)
+    {
+      caster.PrepareProbes(hitBox, probe);
+    }
+  }
   double* xyz = vtkDoubleArray::FastDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = normals->GetPointer(0);
   double* gradientOut = gradient->GetPointer(0);

@@ -598,6 +598,46 @@ static void FinishVertex(
   }
 }
 
+bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
+{
+  const size_t count = this->Factors.size();
+  const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
+  const double bottom = 1.0 / top;
+  bool plain = true;
+  for (size_t k = 0; k < count; ++k)
+  {
+    const PolynomialFactor& pf = this->Factors[k].Polynomial;
+    f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
+                                : pf.EvaluateWithGradient(p, g[k]);
+    const double a = std::fabs(f[k]);
+    plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
+      std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+  }
+  return plain;
+}
+
+void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],
+  double& gradientNorm, int& nearest, double* logGradientNorm) const
+{
+  const size_t count = this->Factors.size();
+  double best = std::numeric_limits<double>::infinity();
+  nearest = -1;
+  ScaledProduct s;
+  for (size_t k = 0; k < count; ++k)
+  {
+    KeepNearest(f[k], g[k], static_cast<int>(k), nearest, best);
+  }
+  for (size_t k = 0; k < count; ++k)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      s.G[c] = s.G[c] * f[k] + s.P * g[k][c];
+    }
+    s.P *= f[k];
+  }
+  FinishVertex(s, normal, gradientNorm, logGradientNorm);
+}
+
 void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
   int& nearest, double* logGradientNorm) const
 {
@@ -606,41 +646,13 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
   // within 2^±(250 / factors) and every gradient component below that: no partial
   // product or gradient then leaves [2^-256, 2^256], where ScaledProduct never rescales,
   // so the same operations give the same bits.
-  constexpr size_t MaxPlain = 32;
   const size_t count = this->Factors.size();
-  if (this->AllPolynomial && count > 0 && count <= MaxPlain)
+  if (this->AllPolynomial && count > 0 && count <= MaxPlainVertex)
   {
-    double f[MaxPlain], g[MaxPlain][3];
-    const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
-    const double bottom = 1.0 / top;
-    bool plain = true;
-    for (size_t k = 0; k < count; ++k)
+    double f[MaxPlainVertex], g[MaxPlainVertex][3];
+    if (this->PlainVertexFactors(p, f, g))
     {
-      const PolynomialFactor& pf = this->Factors[k].Polynomial;
-      f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
-                                  : pf.EvaluateWithGradient(p, g[k]);
-      const double a = std::fabs(f[k]);
-      plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
-        std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
-    }
-    if (plain)
-    {
-      double best = std::numeric_limits<double>::infinity();
-      nearest = -1;
-      ScaledProduct s;
-      for (size_t k = 0; k < count; ++k)
-      {
-        KeepNearest(f[k], g[k], static_cast<int>(k), nearest, best);
-      }
-      for (size_t k = 0; k < count; ++k)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          s.G[c] = s.G[c] * f[k] + s.P * g[k][c];
-        }
-        s.P *= f[k];
-      }
-      FinishVertex(s, normal, gradientNorm, logGradientNorm);
+      this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, logGradientNorm);
       return;
     }
   }
@@ -655,6 +667,219 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
     s.Multiply(fi, gi);
   }
   FinishVertex(s, normal, gradientNorm, logGradientNorm);
+}
+
+// An upper bound of |P| over the box: the smaller of the term-wise interval bound and
+// the centred form's (Σ|b| of the Taylor coefficients about the box's centre, scaled to
+// its half-widths, plus their rounding): on a small box about a point where the expanded
+// terms cancel ((8z + 5)^4 near z = −5/8) the centred form is tighter by orders.
+static double MaxAbsOver(const Polynomial3& p, const Interval box[3])
+{
+  double magnitude = 0.0;
+  const Interval range = p.EvaluateInterval(box, &magnitude);
+  double bound = std::max(std::fabs(range.Lo), std::fabs(range.Hi));
+  const int n = p.GetDegree();
+  if (n >= 0 && n <= TaylorMaxDegree)
+  {
+    double c[3], h[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = 0.5 * (box[a].Lo + box[a].Hi);
+      h[a] = std::max(box[a].Hi - c[a], c[a] - box[a].Lo) * (1.0 + 4.0 * DBL_EPSILON);
+    }
+    constexpr int M = TaylorMaxDegree + 1;
+    double b[M * M * M];
+    if (p.ExpandAbout(c, h, b) == n)
+    {
+      const int m = n + 1;
+      double sum = 0.0;
+      for (int k = 0; k < m * m * m; ++k)
+      {
+        sum += std::fabs(b[k]);
+      }
+      bound = std::min(bound, sum * (1.0 + 1e-12) + 8.0 * (n + 1) * DBL_EPSILON * magnitude);
+    }
+  }
+  return bound;
+}
+
+ProductKernel::ProbeBounds ProductKernel::PrepareProbes(const double box[6], double probe) const
+{
+  ProbeBounds bounds;
+  bounds.Probe = probe;
+  std::copy(box, box + 6, bounds.Box);
+  const size_t count = this->Factors.size();
+  const double inf = std::numeric_limits<double>::infinity();
+  bounds.Slack.assign(3 * count, inf);
+  double corner[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    corner[a] = probe + std::max(std::fabs(box[2 * a]), std::fabs(box[2 * a + 1]));
+    if (!(box[2 * a] <= box[2 * a + 1]) || !std::isfinite(corner[a]))
+    {
+      return bounds;
+    }
+  }
+  if (!(probe > 0) || !std::isfinite(probe))
+  {
+    return bounds;
+  }
+  // Per factor and axis: the derivatives of order 2 and up along the axis (their
+  // enclosures over each cell bound the Taylor remainder) and the rounding part of the
+  // slack, from the magnitude polynomials (coefficients not negative: largest at the
+  // corner of largest |x|, |y|, |z|).
+  struct Part
+  {
+    std::vector<Polynomial3> Derivatives; // orders 2, 3, ...
+    double Rounding = std::numeric_limits<double>::infinity();
+  };
+  std::vector<Part> parts(3 * count);
+  size_t work = 0;
+  bool curved = false; // some factor of degree above 2 (remainders that vary in space)
+  for (size_t i = 0; i < count; ++i)
+  {
+    const Factor& factor = this->Factors[i];
+    if (!factor.IsPolynomial || !factor.Polynomial.HasWorld)
+    {
+      continue;
+    }
+    const PolynomialFactor& pf = factor.Polynomial;
+    // The value at p and at a probe, each within RoundingBound of the local terms'
+    // magnitude (which WorldMagnitude bounds), twice over for the frame change's rounding.
+    const double value = 2.0 * pf.Poly.RoundingBound(pf.WorldMagnitude.Evaluate(corner));
+    curved = curved || pf.World.GetDegree() > 2;
+    for (int a = 0; a < 3; ++a)
+    {
+      Part& part = parts[3 * i + a];
+      const double gradient =
+        2.0 * pf.Poly.RoundingBound(pf.WorldMagnitude.Derivative(a).Evaluate(corner));
+      part.Rounding = 2.0 * value + probe * gradient;
+      Polynomial3 derivative = pf.World.Derivative(a);
+      for (int k = 2; k <= pf.World.GetDegree(); ++k)
+      {
+        derivative = derivative.Derivative(a);
+        if (derivative.IsZero())
+        {
+          break;
+        }
+        part.Derivatives.push_back(derivative);
+        work += derivative.GetTerms().size() + 1;
+      }
+    }
+  }
+  // Cells: the remainders of high-degree factors vary by orders of magnitude over a box
+  // (the table top's (8z + 5)^6), so each cell of up to 8³ has its own, within a budget
+  // of interval evaluations.
+  int n = curved ? 8 : 1;
+  while (n > 1 && work * static_cast<size_t>(n * n * n) > 400000)
+  {
+    n /= 2;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds.Cells[a] = n;
+  }
+  const size_t cells = static_cast<size_t>(n) * n * n;
+  bounds.Slack.assign(cells * 3 * count, inf);
+  for (size_t cell = 0; cell < cells; ++cell)
+  {
+    const int ci[3] = { static_cast<int>(cell % n), static_cast<int>((cell / n) % n),
+      static_cast<int>(cell / (static_cast<size_t>(n) * n)) };
+    // The cell grown by the probe and a little more (the rounding of p ± h, and of the
+    // cell a point is found in).
+    Interval grown[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = box[2 * a], width = (box[2 * a + 1] - lo) / n;
+      const double reach = probe * (1.0 + 1e-6) + 1e-9 * width +
+        1e-12 * (std::fabs(box[2 * a]) + std::fabs(box[2 * a + 1]));
+      grown[a] = { lo + ci[a] * width - reach, lo + (ci[a] + 1) * width + reach };
+    }
+    for (size_t i = 0; i < count; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        const Part& part = parts[3 * i + a];
+        double remainder = 0.0, power = probe, factorial = 1.0;
+        for (size_t d = 0; d < part.Derivatives.size(); ++d)
+        {
+          power *= probe;
+          factorial *= static_cast<double>(d + 2);
+          remainder += power / factorial * MaxAbsOver(part.Derivatives[d], grown);
+        }
+        const double slack = (remainder + part.Rounding) * (1.0 + 1e-10);
+        bounds.Slack[(cell * count + i) * 3 + a] = std::isfinite(slack) ? slack : inf;
+      }
+    }
+  }
+  return bounds;
+}
+
+bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds,
+  double tolerance, double normal[3], double& gradientNorm, int& nearest,
+  double& logGradientNorm) const
+{
+  const size_t count = this->Factors.size();
+  if (!this->AllPolynomial || count == 0 || count > MaxPlainVertex ||
+    bounds.Slack.size() != 3 * count * bounds.Cells[0] * bounds.Cells[1] * bounds.Cells[2])
+  {
+    return false;
+  }
+  size_t cell = 0;
+  for (int a = 3; a-- > 0;)
+  {
+    const double lo = bounds.Box[2 * a], hi = bounds.Box[2 * a + 1];
+    if (!(p[a] >= lo && p[a] <= hi))
+    {
+      return false;
+    }
+    const int n = bounds.Cells[a];
+    const int c = hi > lo ? static_cast<int>((p[a] - lo) / (hi - lo) * n) : 0;
+    cell = cell * n + static_cast<size_t>(std::max(0, std::min(n - 1, c)));
+  }
+  const double* slack = bounds.Slack.data() + cell * 3 * count;
+  double f[MaxPlainVertex], g[MaxPlainVertex][3];
+  if (!this->PlainVertexFactors(p, f, g))
+  {
+    return false;
+  }
+  // Along axis a every factor moves by at most Δ_i = h·|∂_a f_i|·(1 + 1e-12) + slack
+  // between p and a probe (in their computed values), so the probe's product differs
+  // from P(p) by at most T = Π(|f_i| + Δ_i) − Π|f_i|, summed without cancellation as
+  // T_i = T_{i−1}·(|f_i| + Δ_i) + Δ_i·Π_{j<i}|f_j|. Every term is plain (|f_i| within
+  // 2^±(250/n)) unless a Δ is huge: then T is inf and the test below fails.
+  const double h = bounds.Probe;
+  double largest = 0.0, magnitude = 0.0;
+  double product = 1.0;
+  for (size_t k = 0; k < count; ++k)
+  {
+    product *= f[k];
+  }
+  const double absProduct = std::fabs(product);
+  for (int a = 0; a < 3; ++a)
+  {
+    double t = 0.0, q = 1.0, grown = 1.0;
+    for (size_t k = 0; k < count; ++k)
+    {
+      const double af = std::fabs(f[k]);
+      const double delta = h * std::fabs(g[k][a]) * (1.0 + 1e-12) + slack[3 * k + a];
+      t = t * (af + delta) + delta * q;
+      q *= af;
+      grown *= af + delta;
+    }
+    largest = std::max(largest, t);
+    magnitude = std::max(magnitude, grown);
+  }
+  // |F| at a probe, as computed there: at most |F(p)| (with its rounding) + T, plus the
+  // rounding of the probe's own product and subtraction; with a relative margin.
+  const double r = std::fabs(this->Blending);
+  const double unit = std::numeric_limits<double>::epsilon();
+  const double rounding = 4.0 * (static_cast<double>(count) + 2.0) * unit;
+  const double F = product - this->Blending;
+  const double U = (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) *
+    (1.0 + 1e-10);
+  this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, &logGradientNorm);
+  return std::isfinite(U) && std::isnormal(gradientNorm) && gradientNorm * h > tolerance * U;
 }
 
 // F = m·2^e − r as mantissa·2^exponent, the end of EvaluateScaled.

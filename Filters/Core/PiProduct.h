@@ -95,6 +95,35 @@ public:
   void EvaluateVertexStar(const double p[3], double probe, double normal[3],
     double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
     long probeExponent[6]) const;
+  /// What EvaluateVertexIfRegular needs for one probe length h and a box holding every
+  /// point it will be asked about (PrepareProbes): per factor i and axis a, a bound on
+  /// how far the factor's computed value at p ± s·e_a (|s| <= h) can be from its
+  /// computed value at p plus s·∂_a f_i(p): Σ_{k>=2} h^k/k!·max|∂^k_a f_i| over the cell
+  /// of the box that holds p, grown by h (up to 8³ cells where a factor's degree is above
+  /// 2, fewer for big products: at most ~400 000 terms of interval evaluation), plus the
+  /// rounding of the values and h times that of the gradient. +inf
+  /// where no bound is known (a factor that is not a polynomial or of degree above
+  /// TaylorMaxDegree): that factor's points then always take the probes.
+  struct ProbeBounds
+  {
+    double Probe = 0.0;
+    double Box[6] = { 0, -1, 0, -1, 0, -1 }; // points outside it take the probes
+    int Cells[3] = { 1, 1, 1 };              // the box cut into cells, each its own slack
+    std::vector<double> Slack;               // per cell (x fastest), factor and axis
+  };
+  ProbeBounds PrepareProbes(const double box[6], double probe) const;
+  /// EvaluateVertex's attributes at p (the same bits), and whether p is certainly not
+  /// singular on the probes' scale: true when |∇F|·h > tolerance·U, U an upper bound of
+  /// the largest |F| at the six points p ± h·e_a as EvaluateVertexStar computes them
+  /// (from F(p), the factors' values and gradients at p and the bounds' slack: the
+  /// product rule with every factor moved by its largest change, no cancellation). Then
+  /// RayCaster::Attributes's probe test cannot say singular and the six probes are
+  /// skipped. False when it cannot tell (the outputs are then not to be used): p outside
+  /// the bounds' box, products
+  /// of more than 32 factors or outside the plain double range, non-polynomial factors,
+  /// and points near a vanishing gradient.
+  bool EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds, double tolerance,
+    double normal[3], double& gradientNorm, int& nearest, double& logGradientNorm) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.
@@ -168,6 +197,14 @@ public:
   int NearestFactor(const double p[3]) const;
 
 private:
+  // EvaluateVertex's first step for up to MaxPlainVertex polynomial factors: their values
+  // and gradients at p into f and g; true if every value is non-zero within
+  // 2^±(250 / factors) and every gradient component below that bound (the plain path).
+  static constexpr size_t MaxPlainVertex = 32;
+  bool PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const;
+  // Its second step: nearest factor, product rule, unit normal and |∇F|.
+  void FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],
+    double& gradientNorm, int& nearest, double* logGradientNorm) const;
   // Accumulates one factor value into a per-point scaled product.
   static void Accumulate(double& m, long& e, double f);
   double Finish(double m, long e) const;

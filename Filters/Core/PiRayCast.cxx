@@ -210,6 +210,14 @@ static bool ProbesSayZeroGradient(double gradient, double logGradient, double pr
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 
+void RayCaster::PrepareProbes(const double box[6], double probe)
+{
+  if (this->Kernel)
+  {
+    this->Probes = this->Kernel->PrepareProbes(box, probe);
+  }
+}
+
 bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
   double& gradientNorm, int& nearest) const
 {
@@ -231,6 +239,12 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
   }
   double logGradient, mantissa[6];
   long exponent[6];
+  if (probe == this->Probes.Probe && probe > 0 &&
+    this->Kernel->EvaluateVertexIfRegular(
+      p, this->Probes, tolerance, normal, gradientNorm, nearest, logGradient))
+  {
+    return false;
+  }
   this->Kernel->EvaluateVertexStar(
     p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
   return ProbesSayZeroGradient(gradientNorm, logGradient, probe, tolerance, mantissa, exponent);

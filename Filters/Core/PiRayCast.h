@@ -12,6 +12,7 @@
 #ifndef PiRayCast_h
 #define PiRayCast_h
 
+#include "PiProduct.h"
 #include "PiRayRoots.h"
 
 #include <vector>
@@ -19,7 +20,6 @@
 namespace pisurf
 {
 class MoleculeField;
-class ProductKernel;
 
 /// Casts rays at one product. Reentrant: several threads may cast with one caster.
 class RayCaster
@@ -41,6 +41,12 @@ public:
   /// products whose |∇F| varies by orders of magnitude over the surface.
   bool Attributes(const double p[3], double probe, double tolerance, double normal[3],
     double& gradientNorm, int& nearest) const;
+  /// Lets Attributes skip the six probes where the factors' values and gradients at p
+  /// already prove the point regular (ProductKernel::EvaluateVertexIfRegular), for
+  /// points in `box` and this probe length. The same answers, with EvaluateVertex's
+  /// normal and |∇F| (which may differ from EvaluateVertexStar's in the last bits).
+  /// Not thread-safe: call it before casting.
+  void PrepareProbes(const double box[6], double probe);
 
   /// Roots on [t0, t1] of the product whose polynomial factors are already restricted
   /// to the ray (GetLineCoefficientCount() coefficients, as ProductKernel::RestrictLine
@@ -52,6 +58,7 @@ public:
 private:
   const ProductKernel* Kernel = nullptr;
   const MoleculeField* Molecule = nullptr;
+  ProductKernel::ProbeBounds Probes; // Probe 0: not prepared
   std::vector<int> Counts; // line coefficients per polynomial factor
   size_t LineCoefficients = 0;
 };

@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of pisurf::RayCaster's hit attributes (PiRayCast.h): the singularity test
+// and its shortcut (ProductKernel::EvaluateVertexIfRegular), which skips the six probes
+// only where they could not have said "singular".
+#include "PiModel.h"
+#include "PiProduct.h"
+#include "PiRayCast.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <dirent.h>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pisurf;
+
+namespace
+{
+// Every model of the gallery, as the product kernel vtkPiSurface builds.
+struct Loaded
+{
+  std::string Name;
+  ProductKernel Kernel;
+  double Bounds[6];
+};
+
+std::vector<Loaded> GalleryModels()
+{
+  std::vector<std::string> names;
+  if (DIR* dir = opendir(PISURF_MODELS_DIR))
+  {
+    while (dirent* entry = readdir(dir))
+    {
+      const std::string name = entry->d_name;
+      if (name.size() > 7 && name.compare(name.size() - 7, 7, ".pisurf") == 0)
+      {
+        names.push_back(name);
+      }
+    }
+    closedir(dir);
+  }
+  std::sort(names.begin(), names.end());
+  std::vector<Loaded> models;
+  for (const std::string& name : names)
+  {
+    std::ifstream in(std::string(PISURF_MODELS_DIR) + "/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    Model m;
+    std::string error;
+    EXPECT_TRUE(ParseModel(text.str(), m, error)) << name << ": " << error;
+    std::vector<Factor> factors;
+    for (const PrimitiveSpec& s : m.Primitives)
+    {
+      Factor f;
+      EXPECT_TRUE(BuildFactor(s, m.Parameters, f.Polynomial, error)) << name << ": " << error;
+      f.Polynomial.PrepareIntervals();
+      factors.push_back(f);
+    }
+    Loaded l{ name, ProductKernel(factors, m.Blending), {} };
+    std::copy(m.Bounds, m.Bounds + 6, l.Bounds);
+    models.push_back(std::move(l));
+  }
+  return models;
+}
+
+// |∇F|·h over the largest |F| of the six probes, as RayCaster::Attributes's test sees
+// them (EvaluateVertexStar); +inf where the probes are all 0.
+double ProbeRatio(const ProductKernel& k, const double p[3], double h)
+{
+  double n[3], g, logG, m[6];
+  long e[6];
+  int nearest;
+  k.EvaluateVertexStar(p, h, n, g, nearest, logG, m, e);
+  double largest = 0.0;
+  for (int a = 0; a < 6; ++a)
+  {
+    largest = std::max(largest, std::fabs(std::ldexp(m[a], static_cast<int>(e[a]))));
+  }
+  return largest > 0 ? g * h / largest : std::numeric_limits<double>::infinity();
+}
+}
+
+// Points all over each gallery model's box (on the surface, near it, far from it, where
+// the gradient nearly vanishes: "singular" is common off the surface, where |F| is
+// large at the probes): at a tolerance just above the probes' own ratio the probes say
+// singular, so the shortcut must not say regular; at a tolerance just below they say
+// regular, and where the shortcut says so too, its attributes must be EvaluateVertex's.
+// A bound U below the probes' largest |F| fails the first check.
+TEST(RayCast, SkippedProbesNeverContradictTheProbes)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int certified = 0, refused = 0, models = 0;
+  for (const Loaded& model : GalleryModels())
+  {
+    ++models;
+    const double* b = model.Bounds;
+    const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+      (b[5] - b[4]) * (b[5] - b[4]));
+    const double h = 1e-3 * size;
+    const ProductKernel& k = model.Kernel;
+    const ProductKernel::ProbeBounds bounds = k.PrepareProbes(b, h);
+    for (int s = 0; s < 4000; ++s)
+    {
+      double p[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        p[a] = b[2 * a] + unit(rng) * (b[2 * a + 1] - b[2 * a]);
+      }
+      if (s % 2 == 1)
+      {
+        // Half the points on the surface: a few Newton steps along the gradient.
+        for (int it = 0; it < 30; ++it)
+        {
+          double g[3];
+          const double F = k.EvaluateWithGradient(p, g);
+          const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+          if (!(g2 > 0) || !std::isfinite(F))
+          {
+            break;
+          }
+          for (int a = 0; a < 3; ++a)
+          {
+            p[a] = std::min(b[2 * a + 1], std::max(b[2 * a], p[a] - F * g[a] / g2));
+          }
+        }
+      }
+      const double ratio = ProbeRatio(k, p, h);
+      if (!(ratio > 0) || !std::isfinite(ratio))
+      {
+        continue;
+      }
+      double n[3], g, logG;
+      int nearest;
+      // Just above the ratio: the probes say singular.
+      const bool above = k.EvaluateVertexIfRegular(p, bounds, ratio * (1 + 1e-9), n, g, nearest, logG);
+      EXPECT_FALSE(above) << model.Name << " at (" << p[0] << ", " << p[1] << ", " << p[2]
+                          << "): regular claimed where the probes' ratio is " << ratio;
+      // The ray caster's own tolerance.
+      const bool onSurface = s % 2 == 1;
+      if (k.EvaluateVertexIfRegular(p, bounds, 0.1, n, g, nearest, logG))
+      {
+        certified += onSurface ? 1 : 0;
+        EXPECT_GT(ratio, 0.1) << model.Name;
+        double n2[3], g2;
+        int nearest2;
+        k.EvaluateVertex(p, n2, g2, nearest2);
+        EXPECT_EQ(g, g2);
+        EXPECT_EQ(nearest, nearest2);
+        for (int a = 0; a < 3; ++a)
+        {
+          EXPECT_EQ(n[a], n2[a]);
+        }
+      }
+      else if (onSurface && ratio > 0.1)
+      {
+        ++refused; // a regular surface point the shortcut could not certify
+      }
+    }
+  }
+  EXPECT_GE(models, 20);
+  // The shortcut does its job: most regular surface points are certified.
+  EXPECT_GT(certified, 10 * refused);
+}
+
+// Through RayCaster::Attributes: the same Singular answer with the probes prepared as
+// without, on the crossed cylinders at r = 0 (a singular curve where they meet).
+TEST(RayCast, PreparedProbesKeepTheSingularCurve)
+{
+  std::vector<Factor> factors(2);
+  std::string error;
+  PrimitiveSpec a, c;
+  a.Type = PrimitiveType::Cylinder;
+  a.Radius = 1;
+  a.Axis[0] = 1;
+  a.Axis[1] = 0;
+  a.Axis[2] = 0;
+  c = a;
+  c.Axis[0] = 0;
+  c.Axis[1] = 1;
+  ASSERT_TRUE(BuildFactor(a, {}, factors[0].Polynomial, error)) << error;
+  ASSERT_TRUE(BuildFactor(c, {}, factors[1].Polynomial, error)) << error;
+  for (Factor& f : factors)
+  {
+    f.Polynomial.PrepareIntervals();
+  }
+  const ProductKernel k(factors, 0.0);
+  RayCaster plain(k), prepared(k);
+  const double box[6] = { -2, 2, -2, 2, -2, 2 };
+  const double h = 1e-3 * std::sqrt(48.0);
+  prepared.PrepareProbes(box, h);
+  int singular = 0;
+  for (int s = 0; s <= 2000; ++s)
+  {
+    // Points on the first cylinder (y² + z² = 1), crossing the curve where it meets the
+    // second (x² + z² = 1) at x = ±y.
+    const double angle = 0.3 + 0.001 * s, x = std::sin(angle) + 1e-4 * (s % 7);
+    const double p[3] = { x, std::sin(angle), std::cos(angle) };
+    double n1[3], n2[3], g1, g2;
+    int f1, f2;
+    const bool s1 = plain.Attributes(p, h, 0.1, n1, g1, f1);
+    const bool s2 = prepared.Attributes(p, h, 0.1, n2, g2, f2);
+    EXPECT_EQ(s1, s2) << "at angle " << angle;
+    singular += s1 ? 1 : 0;
+  }
+  EXPECT_GT(singular, 0);
+}
