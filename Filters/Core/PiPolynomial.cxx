@@ -108,6 +108,29 @@ void Polynomial3::Summarize()
       this->ByAxis[a][fill[e[a]]++] = { t.Coefficient, e[lo], e[hi] };
     }
   }
+  this->Nested.clear();
+  const int n = this->Degree;
+  const size_t dense = n >= 0 ? static_cast<size_t>((n + 1) * (n + 2) * (n + 3) / 6) : 0;
+  if (n >= 3 && n <= NestedMaxDegree && 3 * this->Terms.size() >= dense)
+  {
+    this->Nested.assign(dense, 0.0);
+    // Offset of (I, J, K) in the order K = n..0, J = n − K..0, I = n − J − K..0.
+    std::vector<size_t> start(static_cast<size_t>(n + 1) * (n + 1), 0);
+    size_t offset = 0;
+    for (int k = n; k >= 0; --k)
+    {
+      for (int j = n - k; j >= 0; --j)
+      {
+        start[static_cast<size_t>(k) * (n + 1) + j] = offset;
+        offset += static_cast<size_t>(n - j - k + 1);
+      }
+    }
+    for (const auto& t : this->Terms)
+    {
+      this->Nested[start[static_cast<size_t>(t.K) * (n + 1) + t.J] + (n - t.J - t.K - t.I)] =
+        t.Coefficient;
+    }
+  }
   std::fill(this->Q, this->Q + 10, 0.0);
   if (this->Quadric)
   {
@@ -314,11 +337,59 @@ double Polynomial3::Evaluate(const double p[3]) const
   return v;
 }
 
+namespace
+{
+// Nested Horner's rule with the gradient on Polynomial3::Nested's layout, degree N.
+template <int N>
+double NestedWithGradient(const double* c, const double p[3], double g[3])
+{
+  const double x = p[0], y = p[1], z = p[2];
+  double P = 0.0, Px = 0.0, Py = 0.0, Pz = 0.0;
+  for (int k = N; k >= 0; --k)
+  {
+    double Q = 0.0, Qx = 0.0, Qy = 0.0;
+    for (int j = N - k; j >= 0; --j)
+    {
+      double R = *c++, Rx = 0.0;
+      for (int i = N - j - k; i > 0; --i)
+      {
+        Rx = Rx * x + R;
+        R = R * x + *c++;
+      }
+      Qy = Qy * y + Q;
+      Q = Q * y + R;
+      Qx = Qx * y + Rx;
+    }
+    Pz = Pz * z + P;
+    P = P * z + Q;
+    Px = Px * z + Qx;
+    Py = Py * z + Qy;
+  }
+  g[0] = Px;
+  g[1] = Py;
+  g[2] = Pz;
+  return P;
+}
+}
+
 double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
 {
   if (this->Quadric)
   {
     return QuadricWithGradient(this->Q, p, g);
+  }
+  // (Far points, whose powers may overflow, take the term-wise path below.)
+  if (!this->Nested.empty() && std::fabs(p[0]) < 1e30 && std::fabs(p[1]) < 1e30 &&
+    std::fabs(p[2]) < 1e30)
+  {
+    switch (this->Degree)
+    {
+      case 3: return NestedWithGradient<3>(this->Nested.data(), p, g);
+      case 4: return NestedWithGradient<4>(this->Nested.data(), p, g);
+      case 5: return NestedWithGradient<5>(this->Nested.data(), p, g);
+      case 6: return NestedWithGradient<6>(this->Nested.data(), p, g);
+      default: break;
+    }
   }
   // Power tables shifted by one, with a zero below x^0: px[i − 1] is 0 for i = 0, so
   // every term adds its three partials without a branch (c·i is 0 there anyway).

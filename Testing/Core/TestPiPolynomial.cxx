@@ -314,6 +314,45 @@ TEST(Polynomial3, GradientMatchesFiniteDifferences)
   }
 }
 
+// Dense polynomials of degree 3 to 6 (tori, expanded products) take nested Horner's
+// rule: value and gradient as the term sums and the exact derivatives give them, also
+// with some coefficients absent, and the polynomial's own frame of large coordinates.
+TEST(Polynomial3, DenseGradientIsTheDerivativesValue)
+{
+  Random rng(11);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const int degree = 3 + trial % 4;
+    Polynomial3 p;
+    for (int k = 0; k <= degree; ++k)
+    {
+      for (int j = 0; j + k <= degree; ++j)
+      {
+        for (int i = 0; i + j + k <= degree; ++i)
+        {
+          if (rng.Uniform(0, 1) < 0.7 || i + j + k == degree)
+          {
+            p.AddTerm(rng.Uniform(-2.0, 2.0), i, j, k);
+          }
+        }
+      }
+    }
+    const double scale = trial % 3 == 0 ? 30.0 : 1.5;
+    const Point q = rng.InBox(-scale, scale);
+    double g[3];
+    const double v = p.EvaluateWithGradient(q.data(), g);
+    const double magnitude = std::max(1.0, AbsEvaluate(p, q.data()));
+    EXPECT_TRUE(Near(v, NaiveEvaluate(p, q.data()), 1e-13 * magnitude)) << p.ToString();
+    for (int a = 0; a < 3; ++a)
+    {
+      const Polynomial3 d = p.Derivative(a);
+      EXPECT_TRUE(Near(g[a], d.Evaluate(q.data()),
+        1e-13 * std::max(1.0, AbsEvaluate(d, q.data())) * degree))
+        << "component " << a << " of the gradient of " << p.ToString();
+    }
+  }
+}
+
 TEST(Polynomial3, GradientIsExactForAKnownPolynomial)
 {
   // P = x³y²z − 4xz² + 7y: ∇P = (3x²y²z − 4z², 2x³yz + 7, x³y² − 8xz).
