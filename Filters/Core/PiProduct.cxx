@@ -339,15 +339,16 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
   const V4 boundV = zero + bound;
   const I4 magnitudeMask = (I4){ 0, 0, 0, 0 } + 0x7fffffffffffffffLL;
-  int start = 0;
-  for (; start + Group <= n; start += Group)
+  // The last group's lanes past the row repeat its last point (so they change neither
+  // the group's range test nor anything written).
+  for (int start = 0; start < n; start += Group)
   {
     V4 t[Vectors], product[Vectors];
     for (int v = 0; v < Vectors; ++v)
     {
       for (int l = 0; l < Lanes; ++l)
       {
-        t[v][l] = t0 + (start + Lanes * v + l);
+        t[v][l] = t0 + std::min(start + Lanes * v + l, n - 1);
       }
       product[v] = zero + 1.0;
     }
@@ -387,7 +388,8 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       lowest = std::min(lowest, lo[l]);
     }
     const bool fast = highest <= bound && lowest >= inverse;
-    for (int i = 0; i < Group; ++i)
+    const int count = std::min(Group, n - start);
+    for (int i = 0; i < count; ++i)
     {
       const double p = product[i / Lanes][i % Lanes];
       if (fast && std::isfinite(p))
@@ -401,13 +403,6 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
         values[start + i] = this->EvaluateRestricted(coefficients, t0 + (start + i), x);
       }
     }
-  }
-  // The last points (fewer than a group): EvaluateRestricted, whose bits the groups have.
-  for (; start < n; ++start)
-  {
-    double p[3];
-    pointAt(start, p);
-    values[start] = this->EvaluateRestricted(coefficients, t0 + start, p);
   }
 }
 
