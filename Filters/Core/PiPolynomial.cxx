@@ -732,34 +732,26 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
   }
 }
 
-int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) const
+namespace
 {
-  const int n = this->Degree;
-  if (n < 0 || n > TaylorMaxDegree)
-  {
-    return -1;
-  }
-  const int m = n + 1;
-  std::fill(b, b + m * m * m, 0.0);
-  for (const auto& t : this->Terms)
-  {
-    b[(t.I * m + t.J) * m + t.K] = t.Coefficient;
-  }
-  // One axis at a time: every line of coefficients along the axis is a univariate
-  // polynomial of degree n − (the other two powers), shifted to c by repeated synthetic
-  // division, then scaled by h^l.
-  const int stride[3] = { m * m, m, 1 };
+// ExpandAbout's shifts and scalings for degree N (a compile-time constant: the loops
+// unroll and the strides fold; the same operations in the same order for every N).
+template <int N>
+void ShiftAndScale(const double c[3], const double h[3], double* b)
+{
+  constexpr int m = N + 1;
+  constexpr int stride[3] = { m * m, m, 1 };
   for (int a = 0; a < 3; ++a)
   {
     const int u = (a + 1) % 3, w = (a + 2) % 3;
     const double s = c[a], scale = h[a];
-    for (int pu = 0; pu <= n; ++pu)
+    const int st = stride[a];
+    for (int pu = 0; pu <= N; ++pu)
     {
-      for (int pw = 0; pw + pu <= n; ++pw)
+      for (int pw = 0; pw + pu <= N; ++pw)
       {
         double* line = b + pu * stride[u] + pw * stride[w];
-        const int deg = n - pu - pw;
-        const int st = stride[a];
+        const int deg = N - pu - pw;
         if (s != 0.0)
         {
           for (int i = 0; i < deg; ++i)
@@ -778,6 +770,38 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
         }
       }
     }
+  }
+}
+}
+
+int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) const
+{
+  const int n = this->Degree;
+  if (n < 0 || n > TaylorMaxDegree)
+  {
+    return -1;
+  }
+  const int m = n + 1;
+  std::fill(b, b + m * m * m, 0.0);
+  for (const auto& t : this->Terms)
+  {
+    b[(t.I * m + t.J) * m + t.K] = t.Coefficient;
+  }
+  // One axis at a time: every line of coefficients along the axis is a univariate
+  // polynomial of degree n − (the other two powers), shifted to c by repeated synthetic
+  // division, then scaled by h^l.
+  static_assert(TaylorMaxDegree == 8, "ShiftAndScale is instantiated for degrees 0 to 8");
+  switch (n)
+  {
+    case 0: break;
+    case 1: ShiftAndScale<1>(c, h, b); break;
+    case 2: ShiftAndScale<2>(c, h, b); break;
+    case 3: ShiftAndScale<3>(c, h, b); break;
+    case 4: ShiftAndScale<4>(c, h, b); break;
+    case 5: ShiftAndScale<5>(c, h, b); break;
+    case 6: ShiftAndScale<6>(c, h, b); break;
+    case 7: ShiftAndScale<7>(c, h, b); break;
+    default: ShiftAndScale<8>(c, h, b); break;
   }
   return n;
 }
