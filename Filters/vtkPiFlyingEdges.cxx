@@ -1997,7 +1997,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       groups[a] = (g.Count[a] + group - 1) / group;
     }
     const vtkIdType groupCount = vtkIdType(groups[0]) * groups[1] * groups[2];
-    vtkSMPTools::For(0, groupCount, [&](vtkIdType begin, vtkIdType end) {
+    vtkSMPTools::For(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType q = begin; q < end; ++q)
       {
         const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
@@ -2065,7 +2065,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     }
   }
   ClassifyBlocks classify{ &evaluator, &g, &undecided };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(undecided.size()), classify);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
   g.Slot.assign(g.Sign.size(), -1);
   for (size_t b = 0; b < g.Sign.size(); ++b)
   {
@@ -2144,12 +2144,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   {
     SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
     sample.Prepare();
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), sample);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 64, sample);
   }
   else
   {
     SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), sample);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
   }
   if (abort || this->CheckAbort())
   {
@@ -2226,7 +2226,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   contour.RowSigns = rowSigns.GetPointer();
   contour.EdgeMasks = edgeMasks.GetPointer();
   contour.EdgeOffsets = edgeOffsets.GetPointer();
-  vtkSMPTools::For(0, activeCount, contour);
+  vtkSMPTools::For(0, activeCount, 8, contour);
   vtkIdType vertices = 0, triangles = 0;
   if (lap.IsEnabled())
   {
@@ -2270,9 +2270,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   // Edge tables first (triangles look up neighbours' tables), then the triangles.
   contour.Pass = Contour::Edges;
-  vtkSMPTools::For(0, activeCount, contour);
+  vtkSMPTools::For(0, activeCount, 8, contour);
   contour.Pass = Contour::Triangles;
-  vtkSMPTools::For(0, activeCount, contour);
+  vtkSMPTools::For(0, activeCount, 8, contour);
   if (pieces > 1)
   {
     // Keep only the vertices this piece's triangles use (the seams' vertices are shared

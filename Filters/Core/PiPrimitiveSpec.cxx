@@ -294,6 +294,29 @@ void PolynomialFactor::PrepareIntervals()
   }
 }
 
+namespace
+{
+typedef double V4 __attribute__((vector_size(32)));
+// OctantSigns[odd][h][l]: −1 where octant o = 4h + l gives u^α a negative sign, α's odd
+// powers being the bits of `odd` (the lower half of axis a where bit a of o is clear).
+struct OctantSignTable
+{
+  V4 Signs[8][2];
+  OctantSignTable()
+  {
+    for (int odd = 0; odd < 8; ++odd)
+    {
+      for (int o = 0; o < 8; ++o)
+      {
+        this->Signs[odd][o / 4][o % 4] = __builtin_parity(odd & ~o) ? -1.0 : 1.0;
+      }
+    }
+  }
+};
+const OctantSignTable OctantSignsTable;
+const V4 (&OctantSigns)[8][2] = OctantSignsTable.Signs;
+}
+
 bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Interval* octants) const
 {
   if (!this->HasWorld)
@@ -376,6 +399,15 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
       }
     }
   }
+  // The octants' sums four at a time (lanes o = 0..3 and 4..7), each lane adding the
+  // same terms in the same order as one octant would alone.
+  const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
+  V4 octLo[2], octHi[2];
+  for (int o = 0; o < 8; ++o)
+  {
+    octLo[o / 4][o % 4] = olo[o];
+    octHi[o / 4][o % 4] = ohi[o];
+  }
   for (int i = 0; i <= n; ++i)
   {
     for (int j = 0; i + j <= n; ++j)
@@ -404,10 +436,11 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
           hi += std::max(v, 0.0);
           if (octants)
           {
-            for (int o = 0; o < 8; ++o)
+            const V4 s = zero + v;
+            for (int h4 = 0; h4 < 2; ++h4)
             {
-              olo[o] += std::min(v, 0.0);
-              ohi[o] += std::max(v, 0.0);
+              octLo[h4] += zero < s ? zero : s; // std::min(v, 0.0), signed zeros too
+              octHi[h4] += s < zero ? zero : s; // std::max(v, 0.0)
             }
           }
           continue;
@@ -416,18 +449,23 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
         hi += std::fabs(v);
         if (octants)
         {
-          // In octant o, u^α has the sign Π (−1)^α_a over the lower halves.
+          // In octant o, u^α has the sign Π (−1)^α_a over the lower halves (an exact
+          // multiplication by ±1).
           const int odd = (i & 1) | (j & 1) << 1 | (k & 1) << 2;
-          for (int o = 0; o < 8; ++o)
+          for (int h4 = 0; h4 < 2; ++h4)
           {
-            const bool negative = __builtin_parity(odd & ~o);
-            const double s = negative ? -v : v;
-            olo[o] += std::min(s, 0.0);
-            ohi[o] += std::max(s, 0.0);
+            const V4 s = OctantSigns[odd][h4] * v;
+            octLo[h4] += zero < s ? zero : s;
+            octHi[h4] += s < zero ? zero : s;
           }
         }
       }
     }
+  }
+  for (int o = 0; o < 8; ++o)
+  {
+    olo[o] = octLo[o / 4][o % 4];
+    ohi[o] = octHi[o / 4][o % 4];
   }
   auto widen = [rounding](double l, double u) {
     const double slack = std::max(1e-12 * (std::fabs(l) + std::fabs(u)), rounding);
