@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cstring>
 #include <cmath>
 #include <limits>
 
@@ -119,6 +120,52 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
       this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && f.Polynomial.Diagonal;
     }
   }
+  this->PackQuadrics();
+}
+
+namespace
+{
+typedef double V4 __attribute__((vector_size(32)));
+// Four doubles in memory aligned to 8 bytes only (no functions taking or returning V4:
+// their ABI depends on whether AVX is enabled).
+typedef double V4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
+}
+#define PISURF_LOAD4(p) (*reinterpret_cast<const V4Unaligned*>(p))
+#define PISURF_STORE4(p, v) (*reinterpret_cast<V4Unaligned*>(p) = (v))
+
+void ProductKernel::PackQuadrics()
+{
+  this->QuadricRows.clear();
+  this->QuadricStride = 0;
+  const size_t count = this->Factors.size();
+  if (count == 0 || count > MaxPlainVertex || !this->AllPolynomial)
+  {
+    return;
+  }
+  for (size_t k = 0; k < count; ++k)
+  {
+    if (!this->StarQuadric[k] || this->Factors[k].Polynomial.Poly.GetDegree() != 2)
+    {
+      return;
+    }
+  }
+  const size_t stride = (count + 3) / 4 * 4;
+  this->QuadricRows.assign(16 * stride, 0.0);
+  for (size_t k = 0; k < stride; ++k)
+  {
+    const PolynomialFactor& pf = this->Factors[std::min(k, count - 1)].Polynomial;
+    double* column = this->QuadricRows.data() + k;
+    for (int a = 0; a < 3; ++a)
+    {
+      column[a * stride] = pf.A[a][a];
+      column[(3 + a) * stride] = pf.B[a];
+    }
+    for (int m = 0; m < 10; ++m)
+    {
+      column[(6 + m) * stride] = pf.Poly.GetQuadric()[m];
+    }
+  }
+  this->QuadricStride = stride;
 }
 
 void ProductKernel::RestrictLine(const double o[3], const double d[3], double* coefficients) const
@@ -153,11 +200,42 @@ double ProductKernel::EvaluateRestricted(const double* coefficients, double t, c
   return this->Finish(m, e);
 }
 
+PISURF_AVX2_CLONES
 bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coefficients) const
 {
   if (!this->AllPolynomial)
   {
     return false;
+  }
+  if (this->QuadricStride > 0)
+  {
+    // Four quadrics at a time: QuadricOnAxis's operations (its zeros beyond the axis
+    // degree are the +0 these sums of +0 coefficients give).
+    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
+    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const size_t stride = this->QuadricStride, count = this->Factors.size();
+    const double* rows = this->QuadricRows.data();
+    for (size_t k0 = 0; k0 < stride; k0 += 4)
+    {
+#define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
+#define q(m) row(6 + (m))
+      const V4 qu = row(u) * p[u] + row(3 + u), qw = row(w) * p[w] + row(3 + w);
+      const V4 c0 = q(0) + q(Linear[u]) * qu + q(Linear[w]) * qw + q(Square[u]) * qu * qu +
+        q(Square[w]) * qw * qw + q(Cross[u][w]) * qu * qw;
+      const V4 c1 = q(Linear[axis]) + q(Cross[axis][u]) * qu + q(Cross[axis][w]) * qw;
+      const V4 c2 = q(Square[axis]);
+#undef q
+#undef row
+      for (size_t l = 0; l < 4 && k0 + l < count; ++l)
+      {
+        double* out = coefficients + 3 * (k0 + l);
+        out[0] = c0[l];
+        out[1] = c1[l];
+        out[2] = c2[l];
+      }
+    }
+    return true;
   }
   for (const Factor& f : this->Factors)
   {
@@ -263,11 +341,37 @@ void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, doub
   logSlope = slope;
 }
 
+PISURF_AVX2_CLONES
 bool ProductKernel::EvaluateOnAxisWithSlope(
   const double* coefficients, int axis, double x, double& value, double& slope) const
 {
   const double bound = this->PlainBound, inverse = 1.0 / bound;
   double product = 1.0, derivative = 0.0;
+  if (this->QuadricStride > 0)
+  {
+    // The n == 3 branch below, with each factor's frame read from the packed rows
+    // instead of its Factor.
+    const size_t stride = this->QuadricStride, count = this->Factors.size();
+    const double* scale = this->QuadricRows.data() + axis * stride;
+    const double* shift = this->QuadricRows.data() + (3 + axis) * stride;
+    for (size_t k = 0; k < count; ++k, coefficients += 3)
+    {
+      const double u = scale[k] * x + shift[k];
+      const double v1 = coefficients[2] * u + coefficients[1];
+      const double d = coefficients[2] * u + v1;
+      const double v = v1 * u + coefficients[0];
+      const double a = std::fabs(v);
+      if (a > bound || (a != 0.0 && a < inverse))
+      {
+        return false;
+      }
+      derivative = derivative * v + product * d * scale[k];
+      product *= v;
+    }
+    value = product - this->Blending;
+    slope = derivative;
+    return std::isfinite(value) && std::isfinite(slope);
+  }
   for (const Factor& f : this->Factors)
   {
     const PolynomialFactor& pf = f.Polynomial;
@@ -593,12 +697,44 @@ static void FinishVertex(
   }
 }
 
+PISURF_AVX2_CLONES
 bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
 {
   const size_t count = this->Factors.size();
   const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
   const double bottom = 1.0 / top;
   bool plain = true;
+  if (this->QuadricStride > 0)
+  {
+    // Four quadrics at a time: PolynomialFactor::QuadricWithGradient's operations.
+    const size_t stride = this->QuadricStride;
+    const double* rows = this->QuadricRows.data();
+    for (size_t k0 = 0; k0 < stride; k0 += 4)
+    {
+#define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
+      const V4 x = row(0) * p[0] + row(3), y = row(1) * p[1] + row(4), z = row(2) * p[2] + row(5);
+      const V4 q0 = row(6), q1 = row(7), q2 = row(8), q3 = row(9), q4 = row(10), q5 = row(11),
+               q6 = row(12), q7 = row(13), q8 = row(14), q9 = row(15);
+      const V4 gx = row(0) * (q1 + 2 * q4 * x + q7 * y + q8 * z);
+      const V4 gy = row(1) * (q2 + 2 * q5 * y + q7 * x + q9 * z);
+      const V4 gz = row(2) * (q3 + 2 * q6 * z + q8 * x + q9 * y);
+      const V4 v = q0 + x * (q1 + q4 * x + q7 * y + q8 * z) + y * (q2 + q5 * y + q9 * z) +
+        z * (q3 + q6 * z);
+#undef row
+      for (size_t l = 0; l < 4 && k0 + l < count; ++l)
+      {
+        const size_t k = k0 + l;
+        f[k] = v[l];
+        g[k][0] = gx[l];
+        g[k][1] = gy[l];
+        g[k][2] = gz[l];
+        const double a = std::fabs(f[k]);
+        plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
+          std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+      }
+    }
+    return plain;
+  }
   for (size_t k = 0; k < count; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;

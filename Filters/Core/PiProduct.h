@@ -219,6 +219,16 @@ private:
   // Per factor: a quadric in a diagonal frame (evaluated inline by EvaluateVertex,
   // EvaluateVertexStar and RestrictToAxis).
   std::vector<unsigned char> StarQuadric;
+  // When every factor is a quadric of degree 2 in a diagonal frame (spheres, ellipsoids,
+  // axis-aligned cylinders: the commonest products) and there are at most
+  // MaxPlainVertex of them: their frames and coefficients as 16 rows (A00 A11 A22 B0 B1
+  // B2 Q0..Q9) of QuadricStride doubles each, a multiple of 4 (the last factor repeated),
+  // so that the per-vertex loops (PlainVertexFactors, RestrictToAxis,
+  // EvaluateOnAxisWithSlope) evaluate four factors per instruction. The same arithmetic
+  // per factor as the scalar code: the same bits.
+  std::vector<double> QuadricRows;
+  size_t QuadricStride = 0; // 0: not all factors are such quadrics
+  void PackQuadrics();
 };
 }
 

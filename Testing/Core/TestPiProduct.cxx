@@ -1609,3 +1609,85 @@ TEST(ProductKernel, AxisLogarithmOfHugeProducts)
   }
   EXPECT_GT(checked, 90);
 }
+
+// Products of diagonal quadrics (spheres, ellipsoids, axis-aligned cylinders) are
+// evaluated four factors at a time from packed arrays. Their vertex attributes, axis
+// restrictions and Newton values must have the bits of the factor-by-factor code: the
+// same product with a polynomial factor 1 appended (which multiplies exactly and turns
+// the packing off).
+TEST(ProductKernel, PackedQuadricsHaveTheBitsOfFactorByFactorEvaluation)
+{
+  Random rng(77);
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    std::vector<Factor> factors;
+    const int count = 1 + (trial * 7) % 31; // 1 to 31 factors: partial groups of four
+    for (int i = 0; i < count; ++i)
+    {
+      PrimitiveSpec s;
+      s.Type = i % 3 == 0 ? PrimitiveType::Sphere
+                          : (i % 3 == 1 ? PrimitiveType::Ellipsoid : PrimitiveType::Cylinder);
+      const Point c = rng.InBox(-1, 1);
+      std::copy(c.begin(), c.end(), s.Center);
+      s.Radius = rng.Uniform(0.3, 1.0);
+      s.Radii[0] = rng.Uniform(0.3, 1.0);
+      s.Radii[1] = rng.Uniform(0.3, 1.0);
+      s.Radii[2] = rng.Uniform(0.3, 1.0);
+      factors.push_back(FromSpec(s));
+      if (i % 4 == 3)
+      {
+        // A general quadric (cross terms too) in a scaled, translated frame.
+        Factor g;
+        g.Polynomial.Poly = rng.Polynomial(2, 10) + Polynomial3::Constant(-0.5);
+        g.Polynomial.Poly.AddTerm(1.0, 2, 0, 0);
+        for (int a = 0; a < 3; ++a)
+        {
+          g.Polynomial.A[a][a] = rng.Uniform(0.5, 2.0);
+          g.Polynomial.B[a] = rng.Uniform(-0.3, 0.3);
+        }
+        factors.back() = g;
+      }
+    }
+    const double r = trial % 2 ? 0.25 : 1e-3;
+    const ProductKernel packed(factors, r);
+    ASSERT_TRUE(packed.GetFactor(0).Polynomial.Diagonal);
+    Factor one;
+    one.Polynomial.Poly = Polynomial3::Constant(1.0);
+    factors.push_back(one);
+    const ProductKernel plain(factors, r);
+    std::vector<double> lineA(packed.GetLineCoefficientCount() + 1),
+      lineB(plain.GetLineCoefficientCount());
+    for (int n = 0; n < 200; ++n)
+    {
+      const Point p = rng.InBox(-1.5, 1.5);
+      double nA[3], nB[3], gA, gB, lA, lB;
+      int fA, fB;
+      packed.EvaluateVertex(p.data(), nA, gA, fA, &lA);
+      plain.EvaluateVertex(p.data(), nB, gB, fB, &lB);
+      EXPECT_EQ(gA, gB);
+      EXPECT_EQ(lA, lB);
+      EXPECT_EQ(fA, fB);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(nA[a], nB[a]);
+      }
+      const int axis = n % 3;
+      ASSERT_TRUE(packed.RestrictToAxis(p.data(), axis, lineA.data()));
+      ASSERT_TRUE(plain.RestrictToAxis(p.data(), axis, lineB.data()));
+      for (size_t m = 0; m + 1 < lineB.size(); ++m)
+      {
+        EXPECT_EQ(lineA[m], lineB[m]) << "coefficient " << m;
+      }
+      double vA, vB, sA, sB;
+      const double x = p[axis] + rng.Uniform(-0.05, 0.05);
+      const bool okA = packed.EvaluateOnAxisWithSlope(lineA.data(), axis, x, vA, sA);
+      const bool okB = plain.EvaluateOnAxisWithSlope(lineB.data(), axis, x, vB, sB);
+      EXPECT_EQ(okA, okB);
+      if (okA && okB)
+      {
+        EXPECT_EQ(vA, vB);
+        EXPECT_EQ(sA, sB);
+      }
+    }
+  }
+}
