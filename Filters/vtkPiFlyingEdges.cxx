@@ -1447,6 +1447,7 @@ struct VertexAttributes
     double x0, double dx, double t, double va, double small, double width)
   {
     double lo = 0.0, hi = 1.0, s = std::max(0.0, std::min(1.0, t));
+    double last = 0.0; // the last Newton step (0: none, or a bisection)
     for (int it = 0; it < 60; ++it)
     {
       double v, slope;
@@ -1464,7 +1465,8 @@ struct VertexAttributes
         return 0.5 * (lo + hi);
       }
       double next = s - v / (slope * dx);
-      if (!(next > lo && next < hi))
+      const bool newton = next > lo && next < hi;
+      if (!newton)
       {
         next = 0.5 * (lo + hi);
       }
@@ -1474,6 +1476,14 @@ struct VertexAttributes
       {
         return s;
       }
+      // Converging quadratically (this step at most a quarter of the last): the error
+      // after it is about C·step² with C ≈ step / last², so when step³ / last² is below
+      // a sixteenth of the width the next evaluation would only confirm it.
+      if (newton && last > 0.0 && step <= 0.25 * last && step * step * step <= width * last * last / 16)
+      {
+        return s;
+      }
+      last = newton ? step : 0.0;
     }
     return s;
   }
