@@ -536,10 +536,10 @@ struct SampleRows
     const int* d = this->G->Dims;
     const double mid = 0.5 * (d[0] - 1);
     const double unused[3] = { 0, 0, 0 };
-    thread_local std::vector<double> values;
-    values.resize(d[0]);
-    thread_local std::vector<char> need;
-    need.resize(this->G->Count[0]);
+    // Locals, not thread_local: a thread_local in a shared library costs a call to find
+    // it at every use (several per row); one allocation per chunk of rows is nothing.
+    std::vector<double> values(d[0]);
+    std::vector<char> need(this->G->Count[0]);
     for (vtkIdType r = begin; r < end; ++r)
     {
       if (single && (r & 255) == 0 && this->Algorithm->CheckAbort())
@@ -2136,12 +2136,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   if (kernel && caches.empty())
   {
     RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   else if (kernel)
   {
     RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), restrict);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   lap("restrict rows");
 
