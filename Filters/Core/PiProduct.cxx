@@ -493,6 +493,32 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
     }
     const bool fast = highest <= bound && lowest >= inverse;
     const int count = std::min(Group, n - start);
+    if (fast && count == Group)
+    {
+      // A whole group with every F finite: F = product − r stored four at a time (what
+      // Clamp(p − r) gives each point; a NaN or an infinity takes the loop below).
+      V4 result[Vectors];
+      V4 largest = zero;
+      for (int v = 0; v < Vectors; ++v)
+      {
+        result[v] = product[v] - r;
+        const V4 m = (V4)((I4)result[v] & magnitudeMask);
+        largest = m <= largest ? largest : m; // a NaN makes it NaN
+      }
+      bool finite = true;
+      for (int l = 0; l < Lanes; ++l)
+      {
+        finite = finite && largest[l] <= DBL_MAX;
+      }
+      if (finite)
+      {
+        for (int v = 0; v < Vectors; ++v)
+        {
+          std::memcpy(values + start + Lanes * v, &result[v], sizeof(V4));
+        }
+        continue;
+      }
+    }
     for (int i = 0; i < count; ++i)
     {
       const double p = product[i / Lanes][i % Lanes];
