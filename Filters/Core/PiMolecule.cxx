@@ -209,6 +209,35 @@ inline double LocalFactor(double f, double inverseSpan, double& slope)
   return f * w + (1.0 - w);
 }
 
+// RefineEdge's terms at one point of its edge, four atoms per instruction: for m in
+// [0, count), v = W[m] + shift, G[m] = LocalFactor(K[m] + v², ...) and DG[m] = its
+// derivative along the edge, with LocalFactor's operations in its order (the same bits).
+// The arrays are read up to count rounded up to 4 (the caller pads them).
+typedef double MoleculeV4 __attribute__((vector_size(32)));
+typedef double MoleculeV4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
+PISURF_AVX2_CLONES
+void LocalTerms(const double* K, const double* W, const double* R2, const double* Inverse,
+  int count, double shift, double delta, double* G, double* DG)
+{
+  const MoleculeV4 zero = { 0.0, 0.0, 0.0, 0.0 }, one = zero + 1.0;
+  for (int m = 0; m < count; m += 4)
+  {
+    const MoleculeV4 v = *reinterpret_cast<const MoleculeV4Unaligned*>(W + m) + shift;
+    const MoleculeV4 f = *reinterpret_cast<const MoleculeV4Unaligned*>(K + m) + v * v -
+      *reinterpret_cast<const MoleculeV4Unaligned*>(R2 + m);
+    const MoleculeV4 inverseSpan = *reinterpret_cast<const MoleculeV4Unaligned*>(Inverse + m);
+    MoleculeV4 u = f * inverseSpan;
+    u = u > zero ? u : zero;
+    u = u < one ? u : one;
+    const MoleculeV4 uu = u * u;
+    const MoleculeV4 w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
+    const MoleculeV4 dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
+    const MoleculeV4 slope = w + (f - 1.0) * dw * inverseSpan;
+    *reinterpret_cast<MoleculeV4Unaligned*>(G + m) = f * w + (1.0 - w);
+    *reinterpret_cast<MoleculeV4Unaligned*>(DG + m) = slope * 2.0 * v * delta;
+  }
+}
+
 // The grid points of a box query (EvaluateBox, OffOuterSideBox): how many per axis, the
 // box they span and their coordinates, computed as the mesher computes them (origin +
 // index·spacing). The coordinates live in a per-thread buffer until the next query.
@@ -1240,9 +1269,10 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     size_t Size = 0;
   };
   thread_local Terms buffer;
-  if (buffer.Size < p.size() + q.size() + 1)
+  // (+4: LocalTerms reads whole groups of four; the padding is set below.)
+  if (buffer.Size < p.size() + q.size() + 4)
   {
-    buffer.Size = p.size() + q.size() + 1;
+    buffer.Size = p.size() + q.size() + 4;
     buffer.Id.resize(buffer.Size);
     buffer.Values.resize(7 * buffer.Size);
   }
@@ -1308,15 +1338,17 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   const double level = this->Level;
   // Each term's g and dg/ds at s, then their product and its derivative in two
   // interleaved partial products (half the chain of dependent multiplies).
+  // Padding up to a multiple of four: terms that are 1 (LocalTerms computes them but
+  // the products below stop at count).
+  for (int m = count; m < count + 3; ++m)
+  {
+    K[m] = 2.0;
+    W[m] = 0.0;
+    R2[m] = 1.0;
+    Inverse[m] = 1.0;
+  }
   auto phi = [&](double s, double& derivative) {
-    const double shift = s * delta;
-    for (int m = 0; m < count; ++m)
-    {
-      const double v = W[m] + shift;
-      double slope;
-      G[m] = LocalFactor(K[m] + v * v - R2[m], Inverse[m], slope);
-      DG[m] = slope * 2.0 * v * delta;
-    }
+    LocalTerms(K, W, R2, Inverse, count, s * delta, delta, G, DG);
     double p0 = 1.0, p1 = 1.0, d0 = 0.0, d1 = 0.0;
     int m = 0;
     for (; m + 1 < count; m += 2)
