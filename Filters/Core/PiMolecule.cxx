@@ -238,6 +238,34 @@ void LocalTerms(const double* K, const double* W, const double* R2, const double
   }
 }
 
+// EvaluateBox's row update for one atom: row[m] *= LocalTerm(d²) for m in [lo, hi], d²
+// from xs[m] − cx and the row's fixed offsets v1, v2, four points per instruction
+// (LocalTerm's operations in its order: the same bits), the last few one by one.
+PISURF_AVX2_CLONES
+void MultiplyLocalRow(double* row, const double* xs, int lo, int hi, double cx, double v1,
+  double v2, double r2, double rho2, double inverse)
+{
+  const MoleculeV4 zero = { 0.0, 0.0, 0.0, 0.0 }, one = zero + 1.0;
+  int m = lo;
+  for (; m + 3 <= hi; m += 4)
+  {
+    const MoleculeV4 v0 = *reinterpret_cast<const MoleculeV4Unaligned*>(xs + m) - cx;
+    const MoleculeV4 d2 = v0 * v0 + v1 * v1 + v2 * v2;
+    const MoleculeV4 f = d2 - r2;
+    const MoleculeV4 u = f * inverse;
+    const MoleculeV4 w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+    const MoleculeV4 g = f <= zero ? f : 1.0 + (f - 1.0) * w;
+    const MoleculeV4 term = d2 < rho2 ? g : one;
+    MoleculeV4Unaligned* out = reinterpret_cast<MoleculeV4Unaligned*>(row + m);
+    *out = *out * term;
+  }
+  for (; m <= hi; ++m)
+  {
+    const double v0 = xs[m] - cx;
+    row[m] *= LocalTerm(v0 * v0 + v1 * v1 + v2 * v2, r2, rho2, inverse);
+  }
+}
+
 // The grid points of a box query (EvaluateBox, OffOuterSideBox): how many per axis, the
 // box they span and their coordinates, computed as the mesher computes them (origin +
 // index·spacing). The coordinates live in a per-thread buffer until the next query.
@@ -1154,14 +1182,10 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
     const double rho2 = this->Rho2[i], r2 = this->R2[i], inverse = this->InvSpan[i];
     const double cx = c[0];
     points.ForRowsNear(c, rho2, [&](int k, int j, int lo, int hi, double v1, double v2) {
-      double* row = values + k * strideZ + j * strideY;
-      for (int m = lo; m <= hi; ++m)
-      {
-        // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the
-        // atom is beyond ρ changes nothing).
-        const double v0 = xs[m] - cx;
-        row[m] *= LocalTerm(v0 * v0 + v1 * v1 + v2 * v2, r2, rho2, inverse);
-      }
+      // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the atom
+      // is beyond ρ changes nothing).
+      MultiplyLocalRow(
+        values + k * strideZ + j * strideY, xs, lo, hi, cx, v1, v2, r2, rho2, inverse);
     });
   }
   const double level = this->Level;
