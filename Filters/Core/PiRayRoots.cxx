@@ -517,6 +517,51 @@ inline double ProductMinusWithSlope(const double* coefficients, const int* count
   return v - r;
 }
 
+// QuickSegment's centred form of one factor (degree D, or d when D < 0) about m: its
+// Taylor shift q, the shift of |c| at |m| (M), and the enclosures f ∈ q_0 ± width and
+// f' ∈ q_1 ± dwidth over |τ| <= h (see QuickSegment).
+template <int D>
+inline void CentredForm(const double* c, double m, double am, double h, double* q, double* M,
+  Interval& f, Interval& df, int degree = D)
+{
+  constexpr double U = 0x1p-53;
+  const int d = D >= 0 ? D : degree;
+  for (int k = 0; k <= d; ++k)
+  {
+    q[k] = c[k];
+    M[k] = std::fabs(q[k]);
+  }
+  for (int a = 0; a < d; ++a)
+  {
+    for (int k = d - 1; k >= a; --k)
+    {
+      q[k] += m * q[k + 1];
+      M[k] += am * M[k + 1];
+    }
+  }
+  // Each q_k is within γ·M_k of the exact shift (at most 2d roundings per term it
+  // sums); generously γ = 4(d + 1)u.
+  const double gamma = 4.0 * (d + 1) * U;
+  double spread = 0.0, dspread = 0.0, wide = 0.0, dwide = 0.0, hk = 1.0;
+  for (int k = 1; k <= d; ++k)
+  {
+    // hk = h^(k−1) here
+    dwide += k * M[k] * hk;
+    if (k >= 2)
+    {
+      dspread += k * std::fabs(q[k]) * hk;
+    }
+    hk *= h;
+    spread += std::fabs(q[k]) * hk;
+    wide += M[k] * hk;
+  }
+  const double q1 = d >= 1 ? q[1] : 0.0;
+  const double width = spread + gamma * (M[0] + wide) + (d + 2) * U * (std::fabs(q[0]) + spread);
+  const double dwidth = dspread + gamma * dwide + (d + 2) * U * (std::fabs(q1) + dspread);
+  f = { q[0] - width, q[0] + width };
+  df = { q1 - dwidth, q1 + dwidth };
+}
+
 // At most this many factors take QuickSegment (its enclosures live on the stack).
 constexpr int QuickFactors = 16;
 
@@ -551,40 +596,13 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
     const int d = counts[i] - 1;
-    for (int k = 0; k <= d; ++k)
+    switch (d)
     {
-      q[k] = coefficients[offset + k];
-      M[k] = std::fabs(q[k]);
+      // (The usual degrees with the loops unrolled: the same operations.)
+      case 2: CentredForm<2>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
+      case 4: CentredForm<4>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
+      default: CentredForm<-1>(coefficients + offset, m, am, h, q, M, f[i], df[i], d); break;
     }
-    for (int a = 0; a < d; ++a)
-    {
-      for (int k = d - 1; k >= a; --k)
-      {
-        q[k] += m * q[k + 1];
-        M[k] += am * M[k + 1];
-      }
-    }
-    // Each q_k is within γ·M_k of the exact shift (at most 2d roundings per term it
-    // sums); generously γ = 4(d + 1)u.
-    const double gamma = 4.0 * (d + 1) * U;
-    double spread = 0.0, dspread = 0.0, wide = 0.0, dwide = 0.0, hk = 1.0;
-    for (int k = 1; k <= d; ++k)
-    {
-      // hk = h^(k−1) here
-      dwide += k * M[k] * hk;
-      if (k >= 2)
-      {
-        dspread += k * std::fabs(q[k]) * hk;
-      }
-      hk *= h;
-      spread += std::fabs(q[k]) * hk;
-      wide += M[k] * hk;
-    }
-    const double q1 = d >= 1 ? q[1] : 0.0;
-    const double width = spread + gamma * (M[0] + wide) + (d + 2) * U * (std::fabs(q[0]) + spread);
-    const double dwidth = dspread + gamma * dwide + (d + 2) * U * (std::fabs(q1) + dspread);
-    f[i] = { q[0] - width, q[0] + width };
-    df[i] = { q1 - dwidth, q1 + dwidth };
     const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
     const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
     if (!(fm <= Range && dm <= Range))
