@@ -497,6 +497,38 @@ constexpr int FastLevels = 4;
 
 // Π p_i(t) − r and its derivative: Horner for each factor and its derivative, then the
 // product rule (Newton's function on a monotone piece).
+// Horner's rule with the derivative for n coefficients (N of them when N > 0: the loop
+// unrolled, the same operations).
+template <int N>
+inline double HornerWithSlope(const double* c, int n, double t, double& df)
+{
+  const int count = N > 0 ? N : n;
+  double f = 0.0, d = 0.0;
+  for (int k = count - 1; k >= 0; --k)
+  {
+    d = d * t + f;
+    f = f * t + c[k];
+  }
+  df = d;
+  return f;
+}
+
+// Horner's rule for P(t) and for Σ|c_k|·|t|^k (a bound on every term), as
+// HornerWithSlope.
+template <int N>
+inline double HornerWithMagnitude(const double* c, int n, double t, double at, double& magnitude)
+{
+  const int count = N > 0 ? N : n;
+  double f = 0.0, a = 0.0;
+  for (int k = count - 1; k >= 0; --k)
+  {
+    f = f * t + c[k];
+    a = a * at + std::fabs(c[k]);
+  }
+  magnitude = a;
+  return f;
+}
+
 inline double ProductMinusWithSlope(const double* coefficients, const int* counts, int factors,
   double r, double t, double& derivative)
 {
@@ -504,11 +536,12 @@ inline double ProductMinusWithSlope(const double* coefficients, const int* count
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
     const double* c = coefficients + offset;
-    double f = 0.0, df = 0.0;
-    for (int k = counts[i] - 1; k >= 0; --k)
+    double f, df;
+    switch (counts[i])
     {
-      df = df * t + f;
-      f = f * t + c[k];
+      case 3: f = HornerWithSlope<3>(c, 3, t, df); break;
+      case 5: f = HornerWithSlope<5>(c, 5, t, df); break;
+      default: f = HornerWithSlope<0>(c, counts[i], t, df); break;
     }
     dv = dv * f + v * df;
     v *= f;
@@ -655,11 +688,12 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
     for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
     {
       const double* c = coefficients + offset;
-      double fi = 0.0, ai = 0.0;
-      for (int k = counts[i] - 1; k >= 0; --k)
+      double fi, ai;
+      switch (counts[i])
       {
-        fi = fi * t + c[k];
-        ai = ai * at + std::fabs(c[k]);
+        case 3: fi = HornerWithMagnitude<3>(c, 3, t, at, ai); break;
+        case 5: fi = HornerWithMagnitude<5>(c, 5, t, at, ai); break;
+        default: fi = HornerWithMagnitude<0>(c, counts[i], t, at, ai); break;
       }
       v *= fi;
       a *= ai;
