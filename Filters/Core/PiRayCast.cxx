@@ -151,24 +151,41 @@ void RayGrid::SetRow(int j, std::vector<double>& row) const
   }
 }
 
+namespace
+{
+// One factor's coefficients at pixel column x (Horner's rule in x per power of s), for
+// degree D (D > 0: the loops unrolled, the same operations) or `degree`.
+template <int D>
+inline void RestrictComposed(const double* h, int degree, double x, double* coefficients)
+{
+  const int d = D > 0 ? D : degree;
+  const int side = d + 1;
+  for (int m = 0; m <= d; ++m)
+  {
+    const double* hm = h + m * side;
+    double v = 0.0;
+    for (int a = d - m; a >= 0; --a)
+    {
+      v = v * x + hm[a];
+    }
+    coefficients[m] = v;
+  }
+}
+}
+
 void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficients) const
 {
   const double x = i - this->CentreI;
   for (const Composed& c : this->Factors)
   {
-    const int side = c.Degree + 1;
     const double* h = row.data() + c.RowOffset;
-    for (int m = 0; m <= c.Degree; ++m)
+    switch (c.Degree)
     {
-      const double* hm = h + m * side;
-      double v = 0.0;
-      for (int a = c.Degree - m; a >= 0; --a)
-      {
-        v = v * x + hm[a];
-      }
-      coefficients[m] = v;
+      case 2: RestrictComposed<2>(h, 2, x, coefficients); break;
+      case 4: RestrictComposed<4>(h, 4, x, coefficients); break;
+      default: RestrictComposed<0>(h, c.Degree, x, coefficients); break;
     }
-    coefficients += side;
+    coefficients += c.Degree + 1;
   }
 }
 
