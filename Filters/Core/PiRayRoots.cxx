@@ -725,6 +725,89 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
 // then takes the general one): total degree above FastDegree, a factor identically zero
 // on the segment, a scale that leaves the double range, or terms that cancel beyond its
 // slack. Roots go to `cluster` (shared with the re-expansions of its pieces).
+// FastRayRoots's step for one factor (degree D, or `degree` when D < 0): its weighted
+// Bernstein coefficients on [t0, t1] scaled by 2^-e (e added to `exponent`; the factor's
+// coefficients scaled alike into `scaled`), convolved with the product so far (degree
+// `current`) into next, and its absolute values likewise. False where the factor is 0
+// or leaves the exponent range (the caller gives up the fast path).
+template <int D>
+inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
+  const FastWorkspace& w, const double* product, const double* absProduct, int current,
+  double* next, double* absNext, double* scaled, long& exponent)
+{
+  const int d = D >= 0 ? D : degree, count = d + 1;
+  double bern[MaxDegree + 1], q[MaxDegree + 1];
+  // Taylor shift to t0 and scaling to [0, 1] (as ToBernstein), then the weighted
+  // Bernstein coefficients C(d, k)·b_k = Σ_{j<=k} C(d − j, k − j)·q_j directly: no
+  // divisions.
+  for (int k = 0; k < count; ++k)
+  {
+    q[k] = c[k];
+  }
+  for (int a = 0; a < d; ++a)
+  {
+    for (int k = d - 1; k >= a; --k)
+    {
+      q[k] += t0 * q[k + 1];
+    }
+  }
+  double h = 1.0;
+  for (int j = 0; j <= d; ++j)
+  {
+    q[j] *= h;
+    h *= (t1 - t0);
+  }
+  for (int k = 0; k <= d; ++k)
+  {
+    double sum = 0.0;
+    for (int j = 0; j <= k; ++j)
+    {
+      sum += w.Binomial[d - j][k - j] * q[j];
+    }
+    bern[k] = sum;
+  }
+  double m = 0.0;
+  for (int k = 0; k < count; ++k)
+  {
+    m = std::max(m, std::fabs(bern[k]) / w.Binomial[d][k]);
+  }
+  if (!(m > 0.0) || !std::isfinite(m))
+  {
+    return false;
+  }
+  int e;
+  pisurf::Frexp(m, &e);
+  if (e > 1000 || e < -1000)
+  {
+    return false;
+  }
+  exponent += e;
+  const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
+  for (int k = 0; k < count; ++k)
+  {
+    bern[k] *= scale;
+  }
+  for (int k = 0; k < count; ++k)
+  {
+    scaled[k] = c[k] * scale;
+  }
+  // (each coefficient summed in a register, in the order of increasing a as before:
+  // accumulating into next[a + b] in memory makes every step wait for the store of
+  // the one before)
+  for (int k = 0; k <= current + d; ++k)
+  {
+    double sum = 0.0, absolute = 0.0;
+    for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
+    {
+      sum += product[k - b] * bern[b];
+      absolute += absProduct[k - b] * std::fabs(bern[b]);
+    }
+    next[k] = sum;
+    absNext[k] = absolute;
+  }
+  return true;
+}
+
 bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r,
   double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots,
   RootCluster& cluster, int level)
@@ -749,7 +832,7 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   const int n = degree + 1;
   // The product in scaled (binomially weighted) Bernstein form, factor by factor.
   // (the product and the next one alternate between two buffers)
-  double buffers[2][FastDegree + 1], bern[MaxDegree + 1], q[MaxDegree + 1];
+  double buffers[2][FastDegree + 1];
   double* product = buffers[0];
   double* next = buffers[1];
   product[0] = 1.0;
@@ -764,74 +847,29 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
-    const int count = counts[i], d = count - 1;
-    // Taylor shift to t0 and scaling to [0, 1] (as ToBernstein), then the weighted
-    // Bernstein coefficients C(d, k)·b_k = Σ_{j<=k} C(d − j, k − j)·q_j directly: no
-    // divisions.
-    for (int k = 0; k < count; ++k)
+    const int d = counts[i] - 1;
+    const double* c = coefficients + offset;
+    double* scaled = w.Scaled.data() + offset;
+    bool ok;
+    // (The usual degrees with the loops unrolled: the same operations.)
+    switch (d)
     {
-      q[k] = coefficients[offset + k];
+      case 2:
+        ok = BernsteinFactor<2>(
+          c, 2, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        break;
+      case 4:
+        ok = BernsteinFactor<4>(
+          c, 4, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        break;
+      default:
+        ok = BernsteinFactor<-1>(
+          c, d, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        break;
     }
-    for (int a = 0; a < d; ++a)
-    {
-      for (int k = d - 1; k >= a; --k)
-      {
-        q[k] += t0 * q[k + 1];
-      }
-    }
-    double h = 1.0;
-    for (int j = 0; j <= d; ++j)
-    {
-      q[j] *= h;
-      h *= (t1 - t0);
-    }
-    for (int k = 0; k <= d; ++k)
-    {
-      double sum = 0.0;
-      for (int j = 0; j <= k; ++j)
-      {
-        sum += w.Binomial[d - j][k - j] * q[j];
-      }
-      bern[k] = sum;
-    }
-    double m = 0.0;
-    for (int k = 0; k < count; ++k)
-    {
-      m = std::max(m, std::fabs(bern[k]) / w.Binomial[d][k]);
-    }
-    if (!(m > 0.0) || !std::isfinite(m))
+    if (!ok)
     {
       return false;
-    }
-    int e;
-    pisurf::Frexp(m, &e);
-    if (e > 1000 || e < -1000)
-    {
-      return false;
-    }
-    exponent += e;
-    const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
-    for (int k = 0; k < count; ++k)
-    {
-      bern[k] *= scale;
-    }
-    for (int k = 0; k < count; ++k)
-    {
-      w.Scaled[offset + k] = coefficients[offset + k] * scale;
-    }
-    // (each coefficient summed in a register, in the order of increasing a as before:
-    // accumulating into next[a + b] in memory makes every step wait for the store of
-    // the one before)
-    for (int k = 0; k <= current + d; ++k)
-    {
-      double sum = 0.0, absolute = 0.0;
-      for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
-      {
-        sum += product[k - b] * bern[b];
-        absolute += absProduct[k - b] * std::fabs(bern[b]);
-      }
-      next[k] = sum;
-      absNext[k] = absolute;
     }
     current += d;
     std::swap(product, next);
