@@ -385,6 +385,11 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
       d = coefficients[2] * u + v1;
       v = v1 * u + coefficients[0];
     }
+    else if (n == 5)
+    {
+      // A quartic (tori): the loop unrolled, the same operations.
+      v = EvaluateUnivariateWithDerivative(coefficients, 5, u, d);
+    }
     else
     {
       v = EvaluateUnivariateWithDerivative(coefficients, n, u, d);
