@@ -53,13 +53,13 @@ bool ProductDerivativeHasOneSign(const Interval* f, const Interval* df, size_t n
 
 namespace
 {
-// Bernstein coefficients on [a, b] of a polynomial given by `count` ascending monomial
-// coefficients in t, into `bern`; `q` is scratch of the same size.
-void ToBernstein(const double* c, int count, double a, double b, double* q, double* bern)
+// The n + 1 coefficients q of p become those of s -> p(a + (b − a)s): the Taylor shift
+// to a by repeated synthetic division, then the scaling by (b − a)^j. Degree N when
+// N >= 0 (the loops unrolled: the same operations), else `degree`.
+template <int N = -1>
+inline void ShiftToUnit(double* q, int degree, double a, double b)
 {
-  const int n = count - 1;
-  // q(s) = p(a + (b − a)s): Taylor shift to a, then scale by (b − a)^j.
-  std::copy(c, c + count, q);
+  const int n = N >= 0 ? N : degree;
   for (int i = 0; i < n; ++i)
   {
     for (int k = n - 1; k >= i; --k)
@@ -73,6 +73,16 @@ void ToBernstein(const double* c, int count, double a, double b, double* q, doub
     q[j] *= h;
     h *= (b - a);
   }
+}
+
+// Bernstein coefficients on [a, b] of a polynomial given by `count` ascending monomial
+// coefficients in t, into `bern`; `q` is scratch of the same size.
+void ToBernstein(const double* c, int count, double a, double b, double* q, double* bern)
+{
+  const int n = count - 1;
+  // q(s) = p(a + (b − a)s).
+  std::copy(c, c + count, q);
+  ShiftToUnit(q, n, a, b);
   // Power basis to Bernstein: b_k = Σ_{j<=k} C(k, j) / C(n, j) q_j.
   for (int k = 0; k <= n; ++k)
   {
@@ -744,19 +754,7 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   {
     q[k] = c[k];
   }
-  for (int a = 0; a < d; ++a)
-  {
-    for (int k = d - 1; k >= a; --k)
-    {
-      q[k] += t0 * q[k + 1];
-    }
-  }
-  double h = 1.0;
-  for (int j = 0; j <= d; ++j)
-  {
-    q[j] *= h;
-    h *= (t1 - t0);
-  }
+  ShiftToUnit<D>(q, d, t0, t1);
   for (int k = 0; k <= d; ++k)
   {
     double sum = 0.0;
