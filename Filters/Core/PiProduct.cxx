@@ -408,6 +408,22 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
   return std::isfinite(value) && std::isfinite(slope);
 }
 
+// EvaluateRestrictedRow's Horner chains: acc[v] = Σ c[q]·t[v]^q for the group's vectors,
+// T terms (T > 0: the loop unrolled, the same operations) or `terms`.
+template <int T, int Vectors>
+inline void HornerGroup(V4* acc, const V4* t, const double* c, int terms)
+{
+  const int n = T > 0 ? T : terms;
+  for (int q = n - 1; q >= 0; --q)
+  {
+    const double cq = c[q];
+    for (int v = 0; v < Vectors; ++v)
+    {
+      acc[v] = acc[v] * t[v] + cq;
+    }
+  }
+}
+
 // Cloned for AVX2 where the CPU has it (4 points per instruction instead of 2; no FMA,
 // so the values keep their bits), chosen at load time.
 PISURF_AVX2_CLONES
@@ -471,22 +487,22 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       {
         acc[v] = zero;
       }
-      for (int q = terms - 1; q >= 0; --q)
+      // (The usual term counts with the loop unrolled: the same operations.)
+      switch (terms)
       {
-        const double cq = c[q];
-        for (int v = 0; v < Vectors; ++v)
-        {
-          acc[v] = acc[v] * t[v] + cq;
-        }
+        case 3: HornerGroup<3, Vectors>(acc, t, c, 3); break;
+        case 5: HornerGroup<5, Vectors>(acc, t, c, 5); break;
+        case 7: HornerGroup<7, Vectors>(acc, t, c, 7); break;
+        default: HornerGroup<0, Vectors>(acc, t, c, terms); break;
       }
       for (int v = 0; v < Vectors; ++v)
       {
         product[v] *= acc[v];
         const V4 m = (V4)((I4)acc[v] & magnitudeMask);
-        // As std::max(hi, a) and std::min(lo, a == 0 ? bound : a): a NaN leaves them.
+        // As std::max(hi, a) and std::min(lo, a): a NaN leaves them; a factor exactly 0
+        // makes lo 0, so its points take EvaluateRestricted (rare, and the same bits).
         hi = hi < m ? m : hi;
-        const V4 z = m == 0.0 ? boundV : m;
-        lo = z < lo ? z : lo;
+        lo = m < lo ? m : lo;
       }
       c += terms;
     }
