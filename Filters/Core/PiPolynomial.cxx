@@ -623,6 +623,30 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
       }
     }
     std::fill(out, out + n, 0.0);
+    if (moving == 0)
+    {
+      // Grid rows: the loop below for moving == 0 with each term's fixed powers read once
+      // (the same operations).
+      for (const auto& t : this->Terms)
+      {
+        const double py = power[1][t.J], pz = power[2][t.K], c = t.Coefficient;
+        const double* lk = line[t.I];
+        for (int m = 0; m <= t.I; ++m)
+        {
+          const double lm = lk[m];
+          if (lm == 0.0)
+          {
+            continue;
+          }
+          const double cm = c * (lm * py);
+          if (cm != 0.0)
+          {
+            out[m] += cm * pz;
+          }
+        }
+      }
+      return;
+    }
     for (const auto& t : this->Terms)
     {
       const int e[3] = { t.I, t.J, t.K };
