@@ -195,11 +195,6 @@ double Polynomial3::GetCoefficient(int i, int j, int k) const
   return 0.0;
 }
 
-int Polynomial3::GetAxisDegree(int axis) const
-{
-  return this->AxisDegree[axis];
-}
-
 bool Polynomial3::IsFinite() const
 {
   for (const auto& t : this->Terms)

@@ -62,7 +62,7 @@ public:
   double GetCoefficient(int i, int j, int k) const;
   int GetDegree() const { return this->Degree; }
   /// Largest power of each variable separately.
-  int GetAxisDegree(int axis) const;
+  int GetAxisDegree(int axis) const { return this->AxisDegree[axis]; }
   bool IsConstant() const { return this->Degree <= 0; }
   bool IsZero() const { return this->Terms.empty(); }
   /// True if every coefficient is finite.
