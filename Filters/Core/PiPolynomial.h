@@ -168,42 +168,69 @@ private:
   double AxisSum(int a, int m, const double* lo, const double* hi) const;
 };
 
-/// The value of a dense quadric (coefficients 1, x, y, z, x², y², z², xy, xz, yz).
+/// The formulas of a dense quadric (coefficients q: 1, x, y, z, x², y², z², xy, xz, yz)
+/// for any element type T: double, or a GCC vector of doubles that evaluates several
+/// quadrics at once (ProductKernel's packed quadrics). The same operations in the same
+/// order for every T, so each element has the bits of the double version. (Results go
+/// through references: a function returning a vector by value changes its ABI with AVX.)
+template <class T>
+inline void QuadricValueOf(const T* q, const T& x, const T& y, const T& z, T& v)
+{
+  v = q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
+    z * (q[3] + q[6] * z);
+}
+template <class T>
+inline void QuadricGradientOf(const T* q, const T& x, const T& y, const T& z, T* g)
+{
+  g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
+  g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
+  g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
+}
+/// The coefficients c0 + c1·s + c2·s² of s -> Q(p with p[axis] = s), where qu and qw are
+/// p's other two coordinates (axis + 1 and axis + 2, cyclically).
+template <class T>
+inline void QuadricOnAxisOf(const T* Q, const T& qu, const T& qw, int axis, T& c0, T& c1, T& c2)
+{
+  static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
+  static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  c0 = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
+    Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
+  c1 = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
+  c2 = Q[Square[axis]];
+}
+
+/// The value of a dense quadric.
 inline double QuadricValue(const double* q, double x, double y, double z)
 {
-  return q[0] + x * (q[1] + q[4] * x + q[7] * y + q[8] * z) + y * (q[2] + q[5] * y + q[9] * z) +
-    z * (q[3] + q[6] * z);
+  double v;
+  QuadricValueOf(q, x, y, z, v);
+  return v;
 }
 
 /// Polynomial3::RestrictToAxis of a quadric (dense coefficients Q, axis degree n on
 /// `axis`), inline: out[0..n] of s -> Q(p with p[axis] = s) = c0 + c1·s + c2·s².
 inline void QuadricOnAxis(const double* Q, const double p[3], int axis, int n, double* out)
 {
-  static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
-  static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
-  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-  const double qu = p[u], qw = p[w];
+  double c[3];
+  QuadricOnAxisOf(Q, p[(axis + 1) % 3], p[(axis + 2) % 3], axis, c[0], c[1], c[2]);
   // (Written one by one: a loop of n + 1 copies becomes a library memcpy call.)
-  out[0] = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
-    Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
+  out[0] = c[0];
   if (n >= 1)
   {
-    out[1] = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
+    out[1] = c[1];
   }
   if (n >= 2)
   {
-    out[2] = Q[Square[axis]];
+    out[2] = c[2];
   }
 }
 
 /// Polynomial3::EvaluateWithGradient of a quadric (dense coefficients q), inline.
 inline double QuadricWithGradient(const double* q, const double p[3], double g[3])
 {
-  const double x = p[0], y = p[1], z = p[2];
-  g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
-  g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
-  g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
-  return QuadricValue(q, x, y, z);
+  QuadricGradientOf(q, p[0], p[1], p[2], g);
+  return QuadricValue(q, p[0], p[1], p[2]);
 }
 
 /// Polynomial3::EvaluateStar of a quadric (dense coefficients q): along an axis a
@@ -212,12 +239,8 @@ inline double QuadricWithGradient(const double* q, const double p[3], double g[3
 inline void QuadricStar(
   const double* q, const double p[3], const double step[3], double values[7], double g[3])
 {
-  const double x = p[0], y = p[1], z = p[2];
-  const double v = QuadricValue(q, x, y, z);
+  const double v = QuadricWithGradient(q, p, g);
   values[0] = v;
-  g[0] = q[1] + 2 * q[4] * x + q[7] * y + q[8] * z;
-  g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
-  g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
   for (int a = 0; a < 3; ++a)
   {
     const double h = step[a];

@@ -211,22 +211,27 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
   {
     // Four quadrics at a time: QuadricOnAxis's operations (its zeros beyond the axis
     // degree are the +0 these sums of +0 coefficients give).
-    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
-    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
     const size_t stride = this->QuadricStride, count = this->Factors.size();
     const double* rows = this->QuadricRows.data();
     for (size_t k0 = 0; k0 < stride; k0 += 4)
     {
 #define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
-#define q(m) row(6 + (m))
+      V4 q[10];
+      for (int m = 0; m < 10; ++m)
+      {
+        q[m] = row(6 + m);
+      }
       const V4 qu = row(u) * p[u] + row(3 + u), qw = row(w) * p[w] + row(3 + w);
-      const V4 c0 = q(0) + q(Linear[u]) * qu + q(Linear[w]) * qw + q(Square[u]) * qu * qu +
-        q(Square[w]) * qw * qw + q(Cross[u][w]) * qu * qw;
-      const V4 c1 = q(Linear[axis]) + q(Cross[axis][u]) * qu + q(Cross[axis][w]) * qw;
-      const V4 c2 = q(Square[axis]);
-#undef q
 #undef row
+      V4 c0, c1, c2;
+      // (A literal axis makes the coefficients' indices constants: q stays in registers.)
+      switch (axis)
+      {
+        case 0: QuadricOnAxisOf(q, qu, qw, 0, c0, c1, c2); break;
+        case 1: QuadricOnAxisOf(q, qu, qw, 1, c0, c1, c2); break;
+        default: QuadricOnAxisOf(q, qu, qw, 2, c0, c1, c2); break;
+      }
       for (size_t l = 0; l < 4 && k0 + l < count; ++l)
       {
         double* out = coefficients + 3 * (k0 + l);
@@ -751,6 +756,11 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
   const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
   const double bottom = 1.0 / top;
   bool plain = true;
+  auto check = [&](size_t k) {
+    const double a = std::fabs(f[k]);
+    plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
+      std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+  };
   if (this->QuadricStride > 0)
   {
     // Four quadrics at a time: PolynomialFactor::QuadricWithGradient's operations.
@@ -759,15 +769,19 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
     for (size_t k0 = 0; k0 < stride; k0 += 4)
     {
 #define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
-      const V4 x = row(0) * p[0] + row(3), y = row(1) * p[1] + row(4), z = row(2) * p[2] + row(5);
-      const V4 q0 = row(6), q1 = row(7), q2 = row(8), q3 = row(9), q4 = row(10), q5 = row(11),
-               q6 = row(12), q7 = row(13), q8 = row(14), q9 = row(15);
-      const V4 gx = row(0) * (q1 + 2 * q4 * x + q7 * y + q8 * z);
-      const V4 gy = row(1) * (q2 + 2 * q5 * y + q7 * x + q9 * z);
-      const V4 gz = row(2) * (q3 + 2 * q6 * z + q8 * x + q9 * y);
-      const V4 v = q0 + x * (q1 + q4 * x + q7 * y + q8 * z) + y * (q2 + q5 * y + q9 * z) +
-        z * (q3 + q6 * z);
+      V4 q[10];
+      for (int m = 0; m < 10; ++m)
+      {
+        q[m] = row(6 + m);
+      }
+      const V4 scale[3] = { row(0), row(1), row(2) };
+      const V4 x = scale[0] * p[0] + row(3), y = scale[1] * p[1] + row(4),
+               z = scale[2] * p[2] + row(5);
 #undef row
+      V4 v, gl[3];
+      QuadricGradientOf(q, x, y, z, gl);
+      QuadricValueOf(q, x, y, z, v);
+      const V4 gx = scale[0] * gl[0], gy = scale[1] * gl[1], gz = scale[2] * gl[2];
       for (size_t l = 0; l < 4 && k0 + l < count; ++l)
       {
         const size_t k = k0 + l;
@@ -775,9 +789,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
         g[k][0] = gx[l];
         g[k][1] = gy[l];
         g[k][2] = gz[l];
-        const double a = std::fabs(f[k]);
-        plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
-          std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+        check(k);
       }
     }
     return plain;
@@ -787,9 +799,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
     f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
                                 : pf.EvaluateWithGradient(p, g[k]);
-    const double a = std::fabs(f[k]);
-    plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
-      std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+    check(k);
   }
   return plain;
 }
