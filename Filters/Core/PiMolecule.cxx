@@ -158,11 +158,24 @@ double FarthestDistance2(const double c[3], const double box[6])
   return d2;
 }
 
+// The Local factor's formulas below are templates over the element type T: double, or
+// a GCC vector of doubles (four atoms or grid points per instruction in RefineEdge and
+// EvaluateBox). The same operations in the same order for every T, so each element has
+// the bits of the double version. (Results go through references: a function returning
+// a vector by value changes its ABI with AVX.)
+
 // w(u) = 1 − smoothstep5(u) = 1 − u³(10 − 15u + 6u²) for u in [0, 1], as Weight and
 // LocalTerm write it (the same expression: the same bits).
+template <class T>
+inline void WeightPolynomialOf(const T& u, T& w)
+{
+  w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+}
 inline double WeightPolynomial(double u)
 {
-  return 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+  double w;
+  WeightPolynomialOf(u, w);
+  return w;
 }
 
 // The Local weight w(u) = 1 − smoothstep5(u) on [0, 1] and its derivative.
@@ -184,29 +197,46 @@ inline double Weight(double u, double& derivative)
 // The Local factor g of an atom at squared distance d2 from its centre, as the product
 // of F multiplies it (1 beyond ρ; f itself inside the sphere): the one expression of
 // ComputeLocal and EvaluateBox, so that both give the same bits.
+template <class T>
+inline void LocalTermOf(const T& d2, double r2, double rho2, double inverseSpan, T& term)
+{
+  const T zero{}, one = zero + 1.0;
+  const T f = d2 - r2;
+  const T u = f * inverseSpan;
+  T w;
+  WeightPolynomialOf(u, w);
+  const T g = f <= zero ? f : 1.0 + (f - 1.0) * w;
+  term = d2 < rho2 ? g : one;
+}
 inline double LocalTerm(double d2, double r2, double rho2, double inverseSpan)
 {
-  const double f = d2 - r2;
-  const double u = f * inverseSpan;
-  const double w = WeightPolynomial(u);
-  const double g = f <= 0.0 ? f : 1.0 + (f - 1.0) * w;
-  return d2 < rho2 ? g : 1.0;
+  double term;
+  LocalTermOf(d2, r2, rho2, inverseSpan, term);
+  return term;
 }
 
 // The Local factor as a function of f = d² − R²: g = f·w + (1 − w) with u = f/(ρ² − R²)
 // clamped to [0, 1], without branches (g = f exactly inside the sphere, 1 exactly
 // beyond ρ), and its derivative dg/df = w + (f − 1) w'(u)/(ρ² − R²).
-inline double LocalFactor(double f, double inverseSpan, double& slope)
+template <class T>
+inline void LocalFactorOf(const T& f, const T& inverseSpan, T& g, T& slope)
 {
-  double u = f * inverseSpan;
-  u = u > 0.0 ? u : 0.0;
-  u = u < 1.0 ? u : 1.0;
-  const double uu = u * u;
-  const double w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
-  const double dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
+  const T zero{}, one = zero + 1.0;
+  T u = f * inverseSpan;
+  u = u > zero ? u : zero;
+  u = u < one ? u : one;
+  const T uu = u * u;
+  const T w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
+  const T dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
   // (No branch here: a data-dependent one costs a quarter of the edge roots' time.)
   slope = w + (f - 1.0) * dw * inverseSpan;
-  return f * w + (1.0 - w);
+  g = f * w + (1.0 - w);
+}
+inline double LocalFactor(double f, double inverseSpan, double& slope)
+{
+  double g;
+  LocalFactorOf(f, inverseSpan, g, slope);
+  return g;
 }
 
 // RefineEdge's terms at one point of its edge, four atoms per instruction: for m in
@@ -219,21 +249,15 @@ PISURF_AVX2_CLONES
 void LocalTerms(const double* K, const double* W, const double* R2, const double* Inverse,
   int count, double shift, double delta, double* G, double* DG)
 {
-  const MoleculeV4 zero = { 0.0, 0.0, 0.0, 0.0 }, one = zero + 1.0;
   for (int m = 0; m < count; m += 4)
   {
     const MoleculeV4 v = *reinterpret_cast<const MoleculeV4Unaligned*>(W + m) + shift;
     const MoleculeV4 f = *reinterpret_cast<const MoleculeV4Unaligned*>(K + m) + v * v -
       *reinterpret_cast<const MoleculeV4Unaligned*>(R2 + m);
     const MoleculeV4 inverseSpan = *reinterpret_cast<const MoleculeV4Unaligned*>(Inverse + m);
-    MoleculeV4 u = f * inverseSpan;
-    u = u > zero ? u : zero;
-    u = u < one ? u : one;
-    const MoleculeV4 uu = u * u;
-    const MoleculeV4 w = 1.0 - uu * u * (10.0 - 15.0 * u + 6.0 * uu);
-    const MoleculeV4 dw = -30.0 * uu * (1.0 - u) * (1.0 - u);
-    const MoleculeV4 slope = w + (f - 1.0) * dw * inverseSpan;
-    *reinterpret_cast<MoleculeV4Unaligned*>(G + m) = f * w + (1.0 - w);
+    MoleculeV4 g, slope;
+    LocalFactorOf(f, inverseSpan, g, slope);
+    *reinterpret_cast<MoleculeV4Unaligned*>(G + m) = g;
     *reinterpret_cast<MoleculeV4Unaligned*>(DG + m) = slope * 2.0 * v * delta;
   }
 }
@@ -245,17 +269,13 @@ PISURF_AVX2_CLONES
 void MultiplyLocalRow(double* row, const double* xs, int lo, int hi, double cx, double v1,
   double v2, double r2, double rho2, double inverse)
 {
-  const MoleculeV4 zero = { 0.0, 0.0, 0.0, 0.0 }, one = zero + 1.0;
   int m = lo;
   for (; m + 3 <= hi; m += 4)
   {
     const MoleculeV4 v0 = *reinterpret_cast<const MoleculeV4Unaligned*>(xs + m) - cx;
     const MoleculeV4 d2 = v0 * v0 + v1 * v1 + v2 * v2;
-    const MoleculeV4 f = d2 - r2;
-    const MoleculeV4 u = f * inverse;
-    const MoleculeV4 w = 1.0 - u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-    const MoleculeV4 g = f <= zero ? f : 1.0 + (f - 1.0) * w;
-    const MoleculeV4 term = d2 < rho2 ? g : one;
+    MoleculeV4 term;
+    LocalTermOf(d2, r2, rho2, inverse, term);
     MoleculeV4Unaligned* out = reinterpret_cast<MoleculeV4Unaligned*>(row + m);
     *out = *out * term;
   }
