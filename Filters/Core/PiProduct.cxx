@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cfloat>
-#include <cstring>
 #include <cmath>
 #include <limits>
 
@@ -460,7 +459,6 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   // scaled one (whose rescaling is by exact powers of two); and F must be finite.
   // Otherwise the point goes through EvaluateRestricted. The same operations in the
   // same order per point (no FMA: see PISURF_AVX2_CLONES), so the same bits.
-  typedef double V4 __attribute__((vector_size(32)));
   typedef long long I4 __attribute__((vector_size(32)));
   constexpr int Lanes = 4, Vectors = 4, Group = Lanes * Vectors;
   const double bound = this->PlainBound;
@@ -540,7 +538,7 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       {
         for (int v = 0; v < Vectors; ++v)
         {
-          std::memcpy(values + start + Lanes * v, &result[v], sizeof(V4));
+          PISURF_STORE4(values + start + Lanes * v, result[v]);
         }
         continue;
       }

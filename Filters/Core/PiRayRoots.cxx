@@ -505,26 +505,8 @@ struct FastWorkspace
 // Levels of re-expansion (see below), each with its own buffers.
 constexpr int FastLevels = 4;
 
-// Π p_i(t) − r and its derivative: Horner for each factor and its derivative, then the
-// product rule (Newton's function on a monotone piece).
-// Horner's rule with the derivative for n coefficients (N of them when N > 0: the loop
-// unrolled, the same operations).
-template <int N>
-inline double HornerWithSlope(const double* c, int n, double t, double& df)
-{
-  const int count = N > 0 ? N : n;
-  double f = 0.0, d = 0.0;
-  for (int k = count - 1; k >= 0; --k)
-  {
-    d = d * t + f;
-    f = f * t + c[k];
-  }
-  df = d;
-  return f;
-}
-
-// Horner's rule for P(t) and for Σ|c_k|·|t|^k (a bound on every term), as
-// HornerWithSlope.
+// Horner's rule for P(t) and for Σ|c_k|·|t|^k (a bound on every term), for n
+// coefficients (N of them when N > 0: the loop unrolled, the same operations).
 template <int N>
 inline double HornerWithMagnitude(const double* c, int n, double t, double at, double& magnitude)
 {
@@ -539,6 +521,8 @@ inline double HornerWithMagnitude(const double* c, int n, double t, double at, d
   return f;
 }
 
+// Π p_i(t) − r and its derivative: Horner for each factor and its derivative, then the
+// product rule (Newton's function on a monotone piece).
 inline double ProductMinusWithSlope(const double* coefficients, const int* counts, int factors,
   double r, double t, double& derivative)
 {
@@ -549,9 +533,10 @@ inline double ProductMinusWithSlope(const double* coefficients, const int* count
     double f, df;
     switch (counts[i])
     {
-      case 3: f = HornerWithSlope<3>(c, 3, t, df); break;
-      case 5: f = HornerWithSlope<5>(c, 5, t, df); break;
-      default: f = HornerWithSlope<0>(c, counts[i], t, df); break;
+      // (Literal counts for quadrics and quartics: the loop unrolls once inlined.)
+      case 3: f = EvaluateUnivariateWithDerivative(c, 3, t, df); break;
+      case 5: f = EvaluateUnivariateWithDerivative(c, 5, t, df); break;
+      default: f = EvaluateUnivariateWithDerivative(c, counts[i], t, df); break;
     }
     dv = dv * f + v * df;
     v *= f;
