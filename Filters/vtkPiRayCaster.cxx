@@ -996,24 +996,10 @@ int vtkPiRayCaster::RequestData(
   factor->SetName("Factor");
   factor->SetNumberOfTuples(n);
   const double probe = 1e-3 * size;
-  // The hits' box: there the attributes may skip the singularity probes where the
-  // factors prove a hit regular (RayCaster::PrepareProbes).
-  {
-    double hitBox[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (vtkIdType k = 0; k < n; ++k)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        hitBox[2 * c] = std::min(hitBox[2 * c], hits[k].P[c]);
-        hitBox[2 * c + 1] = std::max(hitBox[2 * c + 1], hits[k].P[c]);
-      }
-    }
-    if (n > 0)
-    {
-      caster.PrepareProbes(hitBox, probe);
-    }
-  }
+  // Every ray segment lies in the bounds, and so do the hits: there the attributes may
+  // skip the singularity probes where the factors prove a hit regular (a hit a rounding
+  // outside takes the probes; RayCaster::PrepareProbes).
+  caster.PrepareProbes(b, probe);
   double* xyz = vtkDoubleArray::FastDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = normals->GetPointer(0);
   double* gradientOut = gradient->GetPointer(0);

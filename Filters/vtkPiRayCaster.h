@@ -55,7 +55,7 @@
  * products whose |∇F| varies by orders of magnitude over the surface; for products of
  * up to 32 polynomial factors the six values are not computed where the factors'
  * values and gradients at p, with bounds of their higher derivatives over the cell of
- * the hits' box that holds p, already prove the answer "regular"), `Tangent` and
+ * the bounds that holds p, already prove the answer "regular"), `Tangent` and
  * `Factor` (the primitive nearest to zero there). Field data: `PiSurfaceModel` and
  * `PiRayViews` (17 numbers per view: type (0 axis/parallel, 1 perspective), w, h, the
  * ray origin of pixel (0, 0) (the eye for perspective), the per-pixel steps along u
