@@ -132,6 +132,36 @@ typedef double V4Unaligned __attribute__((vector_size(32), aligned(8), may_alias
 #define PISURF_LOAD4(p) (*reinterpret_cast<const V4Unaligned*>(p))
 #define PISURF_STORE4(p, v) (*reinterpret_cast<V4Unaligned*>(p) = (v))
 
+namespace
+{
+// Quadrics k0..k0 + 3 from ProductKernel's packed rows: each axis's scale A_aa and
+// shift B_a, and the ten coefficients.
+inline void LoadQuadricGroup(
+  const double* rows, size_t stride, size_t k0, V4* scale, V4* shift, V4* q)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    scale[a] = PISURF_LOAD4(rows + a * stride + k0);
+    shift[a] = PISURF_LOAD4(rows + (3 + a) * stride + k0);
+  }
+  for (int m = 0; m < 10; ++m)
+  {
+    q[m] = PISURF_LOAD4(rows + (6 + m) * stride + k0);
+  }
+}
+
+// Such a group restricted to the line through p along Axis (QuadricOnAxisOf on the two
+// other local coordinates).
+template <int Axis>
+inline void QuadricGroupOnAxis(const V4* scale, const V4* shift, const V4* q, const double p[3],
+  V4& c0, V4& c1, V4& c2)
+{
+  constexpr int u = (Axis + 1) % 3, w = (Axis + 2) % 3;
+  const V4 qu = scale[u] * p[u] + shift[u], qw = scale[w] * p[w] + shift[w];
+  QuadricOnAxisOf(q, qu, qw, Axis, c0, c1, c2);
+}
+}
+
 void ProductKernel::PackQuadrics()
 {
   this->QuadricRows.clear();
@@ -210,26 +240,19 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
   {
     // Four quadrics at a time: QuadricOnAxis's operations (its zeros beyond the axis
     // degree are the +0 these sums of +0 coefficients give).
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
     const size_t stride = this->QuadricStride, count = this->Factors.size();
     const double* rows = this->QuadricRows.data();
     for (size_t k0 = 0; k0 < stride; k0 += 4)
     {
-#define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
-      V4 q[10];
-      for (int m = 0; m < 10; ++m)
-      {
-        q[m] = row(6 + m);
-      }
-      const V4 qu = row(u) * p[u] + row(3 + u), qw = row(w) * p[w] + row(3 + w);
-#undef row
+      V4 scale[3], shift[3], q[10];
+      LoadQuadricGroup(rows, stride, k0, scale, shift, q);
       V4 c0, c1, c2;
-      // (A literal axis makes the coefficients' indices constants: q stays in registers.)
+      // (A literal axis makes every index a constant: the group stays in registers.)
       switch (axis)
       {
-        case 0: QuadricOnAxisOf(q, qu, qw, 0, c0, c1, c2); break;
-        case 1: QuadricOnAxisOf(q, qu, qw, 1, c0, c1, c2); break;
-        default: QuadricOnAxisOf(q, qu, qw, 2, c0, c1, c2); break;
+        case 0: QuadricGroupOnAxis<0>(scale, shift, q, p, c0, c1, c2); break;
+        case 1: QuadricGroupOnAxis<1>(scale, shift, q, p, c0, c1, c2); break;
+        default: QuadricGroupOnAxis<2>(scale, shift, q, p, c0, c1, c2); break;
       }
       for (size_t l = 0; l < 4 && k0 + l < count; ++l)
       {
@@ -766,16 +789,10 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
     const double* rows = this->QuadricRows.data();
     for (size_t k0 = 0; k0 < stride; k0 += 4)
     {
-#define row(r) PISURF_LOAD4(rows + (r) * stride + k0)
-      V4 q[10];
-      for (int m = 0; m < 10; ++m)
-      {
-        q[m] = row(6 + m);
-      }
-      const V4 scale[3] = { row(0), row(1), row(2) };
-      const V4 x = scale[0] * p[0] + row(3), y = scale[1] * p[1] + row(4),
-               z = scale[2] * p[2] + row(5);
-#undef row
+      V4 scale[3], shift[3], q[10];
+      LoadQuadricGroup(rows, stride, k0, scale, shift, q);
+      const V4 x = scale[0] * p[0] + shift[0], y = scale[1] * p[1] + shift[1],
+               z = scale[2] * p[2] + shift[2];
       V4 v, gl[3];
       QuadricGradientOf(q, x, y, z, gl);
       QuadricValueOf(q, x, y, z, v);
