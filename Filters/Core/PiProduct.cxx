@@ -820,7 +820,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
 }
 
 void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],
-  double& gradientNorm, int& nearest, double* logGradientNorm) const
+  double& gradientNorm, int& nearest, double* logGradientNorm, bool plain) const
 {
   const size_t count = this->Factors.size();
   double best = std::numeric_limits<double>::infinity();
@@ -829,6 +829,16 @@ void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], dou
   for (size_t k = 0; k < count; ++k)
   {
     KeepNearest(f[k], g[k], static_cast<int>(k), nearest, best);
+  }
+  if (!plain)
+  {
+    // The general path's product (ScaledProduct), on the values already computed.
+    for (size_t k = 0; k < count; ++k)
+    {
+      s.Multiply(f[k], g[k]);
+    }
+    FinishVertex(s, normal, gradientNorm, logGradientNorm);
+    return;
   }
   for (size_t k = 0; k < count; ++k)
   {
@@ -848,16 +858,16 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
   // evaluations), then the product rule in plain doubles when every factor is non-zero
   // within 2^±(250 / factors) and every gradient component below that: no partial
   // product or gradient then leaves [2^-256, 2^256], where ScaledProduct never rescales,
-  // so the same operations give the same bits.
+  // so the same operations give the same bits. Otherwise (a factor far from the
+  // surface's own, as around a product of many spheres) ScaledProduct multiplies the
+  // same values: the general path's bits without evaluating the factors again.
   const size_t count = this->Factors.size();
   if (this->AllPolynomial && count > 0 && count <= MaxPlainVertex)
   {
     double f[MaxPlainVertex], g[MaxPlainVertex][3];
-    if (this->PlainVertexFactors(p, f, g))
-    {
-      this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, logGradientNorm);
-      return;
-    }
+    const bool plain = this->PlainVertexFactors(p, f, g);
+    this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, logGradientNorm, plain);
+    return;
   }
   ScaledProduct s;
   double gi[3];

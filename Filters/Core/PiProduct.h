@@ -202,9 +202,11 @@ private:
   // 2^±(250 / factors) and every gradient component below that bound (the plain path).
   static constexpr size_t MaxPlainVertex = 32;
   bool PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const;
-  // Its second step: nearest factor, product rule, unit normal and |∇F|.
+  // Its second step: nearest factor, product rule, unit normal and |∇F|; in plain
+  // doubles if `plain` (PlainVertexFactors' answer), else with ScaledProduct (the
+  // general path's bits).
   void FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],
-    double& gradientNorm, int& nearest, double* logGradientNorm) const;
+    double& gradientNorm, int& nearest, double* logGradientNorm, bool plain = true) const;
   // Accumulates one factor value into a per-point scaled product.
   static void Accumulate(double& m, long& e, double f);
   double Finish(double m, long e) const;

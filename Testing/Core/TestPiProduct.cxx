@@ -1212,6 +1212,25 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
   check(ProductKernel(far, 1.0), p, 1e-3);
   const double o[3] = { 0, 0, 0 }, big[3] = { 1e25, 0, 0 };
   check(ProductKernel({ Sphere(o, 1.0), Sphere(big, 1.0), Plane(0, 0, 1) }, 0.25), p, 1e-2);
+  // 30 spheres about 1e5 away (about 2^33 each: their plain product, 2^1000, and its
+  // gradient overflow) and a near one, within the 32 factors whose values EvaluateVertex
+  // computes first: the product of those values must be the scaled one.
+  std::vector<Factor> many;
+  for (int i = 0; i < 30; ++i)
+  {
+    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
+    many.push_back(Sphere(c, 1.0));
+  }
+  many.push_back(Sphere(o, 1.0));
+  const ProductKernel manyKernel(many, 1.0);
+  check(manyKernel, p, 1e-3);
+  double n[3], g, logG;
+  int nearest;
+  manyKernel.EvaluateVertex(p, n, g, nearest, &logG);
+  EXPECT_EQ(nearest, 30);
+  EXPECT_TRUE(std::isfinite(logG));
+  EXPECT_GT(logG, 600.0); // |∇F| far beyond the double range: its logarithm is finite
+  EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-12);
 }
 
 // pisurf::Frexp and pisurf::Ldexp replace std::frexp and std::ldexp in the products and
