@@ -445,6 +445,45 @@ Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
   return { -HUGE_VAL, HUGE_VAL };
 }
 
+namespace
+{
+Polynomial3 Shifted(const ExpressionNode& n, const double shift[3])
+{
+  switch (n.Type)
+  {
+    case ExpressionNode::Constant:
+      return Polynomial3::Constant(n.Value);
+    case ExpressionNode::Variable:
+      return shift[n.Axis] == 0.0
+        ? Polynomial3::Variable(n.Axis)
+        : Polynomial3::Variable(n.Axis) + Polynomial3::Constant(shift[n.Axis]);
+    case ExpressionNode::Add:
+      return Shifted(*n.A, shift) + Shifted(*n.B, shift);
+    case ExpressionNode::Subtract:
+      return Shifted(*n.A, shift) - Shifted(*n.B, shift);
+    case ExpressionNode::Multiply:
+      return Shifted(*n.A, shift) * Shifted(*n.B, shift);
+    case ExpressionNode::Negate:
+      return -Shifted(*n.A, shift);
+    case ExpressionNode::Power:
+      return Shifted(*n.A, shift).Pow(n.Exponent);
+  }
+  return Polynomial3();
+}
+}
+
+bool ExpandShifted(const ExpressionNode& node, const double shift[3], Polynomial3& result)
+{
+  // (The degree is the parsed one: a shift does not raise it.)
+  Polynomial3 p = Shifted(node, shift);
+  if (!p.IsFinite())
+  {
+    return false;
+  }
+  result = p;
+  return true;
+}
+
 bool IsValidParameterName(const std::string& name)
 {
   if (name.empty() || name == "x" || name == "y" || name == "z")

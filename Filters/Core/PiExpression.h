@@ -57,6 +57,10 @@ bool ParseExpression(const std::string& text, const ParameterMap& parameters,
   Polynomial3& result, std::string& error,
   std::shared_ptr<const ExpressionNode>* tree = nullptr);
 
+/// The expression expanded with every variable v replaced by v + shift[v] (the parser's
+/// algebra, term by term: constants that cancel symbolically, as (x + 2.2) − 2.2, cancel
+/// exactly), i.e. P(q + shift) for the parsed P. False if a coefficient is not finite.
+bool ExpandShifted(const ExpressionNode& node, const double shift[3], Polynomial3& result);
 /// True if `name` may be a parameter: [A-Za-z_][A-Za-z0-9_]* and not x, y or z.
 bool IsValidParameterName(const std::string& name);
 }

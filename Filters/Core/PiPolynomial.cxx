@@ -132,12 +132,20 @@ void Polynomial3::Summarize()
     }
   }
   std::fill(this->Q, this->Q + 10, 0.0);
-  if (this->Quadric)
+  std::fill(this->Q2, this->Q2 + 10, 0.0);
+  this->EvenQuartic = n == 4;
+  for (const auto& t : this->Terms)
   {
+    this->EvenQuartic = this->EvenQuartic && t.I % 2 == 0 && t.J % 2 == 0 && t.K % 2 == 0;
+  }
+  if (this->Quadric || this->EvenQuartic)
+  {
+    // (An even quartic's terms are those of a quadric in the squares: halve the powers.)
+    const int h = this->EvenQuartic ? 2 : 1;
     for (const auto& t : this->Terms)
     {
       int slot = 0;
-      const int key = t.I * 100 + t.J * 10 + t.K;
+      const int key = (t.I / h) * 100 + (t.J / h) * 10 + t.K / h;
       switch (key)
       {
         case 0: slot = 0; break;
@@ -151,7 +159,7 @@ void Polynomial3::Summarize()
         case 101: slot = 8; break;
         default: slot = 9; break; // 011: yz
       }
-      this->Q[slot] = t.Coefficient;
+      (this->EvenQuartic ? this->Q2 : this->Q)[slot] = t.Coefficient;
     }
   }
 }
@@ -374,8 +382,21 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
     return QuadricWithGradient(this->Q, p, g);
   }
   // (Far points, whose powers may overflow, take the term-wise path below.)
-  if (!this->Nested.empty() && std::fabs(p[0]) < 1e30 && std::fabs(p[1]) < 1e30 &&
-    std::fabs(p[2]) < 1e30)
+  const bool near = std::fabs(p[0]) < 1e30 && std::fabs(p[1]) < 1e30 && std::fabs(p[2]) < 1e30;
+  if (this->EvenQuartic && near)
+  {
+    // Q2(x², y², z²) and the chain rule ∂/∂x = 2x·∂Q2/∂(x²).
+    const double a = p[0] * p[0], b = p[1] * p[1], c = p[2] * p[2];
+    double v, gs[3];
+    QuadricValueOf(this->Q2, a, b, c, v);
+    QuadricGradientOf(this->Q2, a, b, c, gs);
+    for (int k = 0; k < 3; ++k)
+    {
+      g[k] = 2.0 * p[k] * gs[k];
+    }
+    return v;
+  }
+  if (!this->Nested.empty() && near)
   {
     switch (this->Degree)
     {
@@ -732,6 +753,16 @@ void Polynomial3::RestrictToAxis(const double q[3], int axis, double* out) const
     // Q: 1, x, y, z, x², y², z², xy, xz, yz. With u, w the fixed variables of this axis:
     // c0 + c1·s + c2·s².
     QuadricOnAxis(this->Q, q, axis, n, out);
+    return;
+  }
+  if (this->EvenQuartic)
+  {
+    // Q2 along the axis, in s² (c0 + c1·s² + c2·s⁴), the other squares fixed.
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    double c0, c1, c2;
+    QuadricOnAxisOf(this->Q2, q[u] * q[u], q[w] * q[w], axis, c0, c1, c2);
+    const double even[5] = { c0, 0.0, c1, 0.0, c2 };
+    std::copy(even, even + n + 1, out);
     return;
   }
   std::fill(out, out + n + 1, 0.0);

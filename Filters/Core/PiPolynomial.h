@@ -80,8 +80,8 @@ public:
   /// Value at p. Cost: O(degree + terms).
   double Evaluate(const double p[3]) const;
   /// Value and gradient at p. Cost: O(degree + 3·terms), or for dense polynomials of
-  /// degree 3 to 6 nested Horner's rule (its value may then differ from Evaluate's in
-  /// the last bits).
+  /// degree 3 to 6 nested Horner's rule, or for quartics in x², y², z² only a quadric of
+  /// the squares (its value may then differ from Evaluate's in the last bits).
   double EvaluateWithGradient(const double p[3], double g[3]) const;
   /// Degree <= 2 (spheres, cylinders, quadrics): GetQuadric() gives its dense
   /// coefficients 1, x, y, z, x², y², z², xy, xz, yz (all 0 for the zero polynomial),
@@ -163,6 +163,12 @@ private:
   // multiplications and table reads per term). Empty otherwise (Summarize).
   static constexpr int NestedMaxDegree = 6;
   std::vector<double> Nested;
+  // Quartics with only even powers (tori and superquadrics of exponent 4 about their
+  // centre): a quadric of the squares (x², y², z²), whose dense coefficients are Q2 (Q's
+  // order). EvaluateWithGradient and RestrictToAxis then evaluate that quadric
+  // (Summarize).
+  bool EvenQuartic = false;
+  double Q2[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   // Σ over the group of power m on axis a of (C·lo^Lo)·hi^Hi, or with `inner` C·(lo^Lo·hi^Hi).
   template <bool Inner>
   double AxisSum(int a, int m, const double* lo, const double* hi) const;

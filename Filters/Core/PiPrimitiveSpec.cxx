@@ -225,7 +225,21 @@ Interval PolynomialFactor::NaturalInterval(const Interval local[3], double magni
   // The expression as written encloses the exact value; the expanded polynomial's
   // computed values may differ from it by their rounding (terms that cancel), so the
   // natural enclosure is widened by that.
-  const Interval n = pisurf::EvaluateInterval(*this->Natural, local);
+  // (The expression's variables are the local coordinates plus NaturalShift, the
+  // centring of BuildFactor: the box shifted back, outward.)
+  Interval written[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    written[a] = local[a];
+    const double sh = this->NaturalShift[a];
+    if (sh != 0.0)
+    {
+      const double lo = local[a].Lo + sh, hi = local[a].Hi + sh;
+      written[a] = { lo - (std::fabs(lo) * DBL_EPSILON + DBL_MIN),
+        hi + (std::fabs(hi) * DBL_EPSILON + DBL_MIN) };
+    }
+  }
+  const Interval n = pisurf::EvaluateInterval(*this->Natural, written);
   const double a = this->NaturalScale * n.Lo, b = this->NaturalScale * n.Hi;
   const double slack =
     std::max(1e-12 * (std::fabs(a) + std::fabs(b)), this->Poly.RoundingBound(magnitude)) + 1e-300;
@@ -571,6 +585,49 @@ bool OrientationMatrix(const PrimitiveSpec& s, double R[3][3], std::string& erro
   return true;
 }
 
+namespace
+{
+// A polynomial written about a point other than the origin (the cup's handle,
+// ((x − 2.2)² + (z + 1)² + y² + 0.49)² − 2((x − 2.2)² + (z + 1)²)) expands to many more
+// terms than about that point (35 instead of 10), and every evaluation pays for each.
+// Per axis, the shift σ that removes the pure x^(m−1) term (m the highest power of x,
+// present alone) centres it: σ = −c(m−1)/(m·c(m)). The expression as written is then
+// expanded again in q + σ (ExpandShifted: shifts that cancel symbolically cancel
+// exactly), and that form is kept if it has fewer terms.
+void CentreExpression(const ExpressionNode& tree, Polynomial3& p, double shift[3])
+{
+  double sigma[3] = { 0, 0, 0 };
+  bool any = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int m = p.GetAxisDegree(a);
+    if (m < 2)
+    {
+      continue;
+    }
+    int top[3] = { 0, 0, 0 }, next[3] = { 0, 0, 0 };
+    top[a] = m;
+    next[a] = m - 1;
+    const double cm = p.GetCoefficient(top[0], top[1], top[2]);
+    const double cn = p.GetCoefficient(next[0], next[1], next[2]);
+    const double s = cm != 0.0 ? -cn / (m * cm) : 0.0;
+    if (s != 0.0 && std::isfinite(s))
+    {
+      sigma[a] = s;
+      any = true;
+    }
+  }
+  Polynomial3 centred;
+  if (!any || !ExpandShifted(tree, sigma, centred) ||
+    centred.GetTerms().size() >= p.GetTerms().size())
+  {
+    return;
+  }
+  p = centred;
+  std::copy(sigma, sigma + 3, shift);
+}
+}
+
 bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
   PolynomialFactor& factor, std::string& error)
 {
@@ -612,6 +669,7 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
 
   Polynomial3 p;
   std::shared_ptr<const ExpressionNode> natural;
+  double shift[3] = { 0, 0, 0 }; // polynomials: the expression's variables are q + shift
   double half[3] = { -1, -1, -1 }; // local half extents; negative: unbounded
   switch (s.Type)
   {
@@ -709,6 +767,7 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
         error = "expression: " + why;
         return false;
       }
+      CentreExpression(*natural, p, shift);
       break;
     }
     default:
@@ -730,6 +789,12 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
   for (int i = 0; i < 3; ++i)
   {
     factor.B[i] = -(R[i][0] * s.Center[0] + R[i][1] * s.Center[1] + R[i][2] * s.Center[2]);
+    // A centred expression: its local coordinates are the written ones minus the shift.
+    if (shift[i] != 0.0)
+    {
+      factor.B[i] -= shift[i];
+      factor.NaturalShift[i] = shift[i];
+    }
   }
   if (half[0] >= 0.0)
   {

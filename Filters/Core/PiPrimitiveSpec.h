@@ -96,6 +96,9 @@ struct PolynomialFactor
   /// its interval enclosure is intersected with the others.
   std::shared_ptr<const ExpressionNode> Natural;
   double NaturalScale = 1.0;
+  /// The expression's variables are the local coordinates plus this (a polynomial
+  /// primitive written about another point is centred there: see BuildFactor).
+  double NaturalShift[3] = { 0, 0, 0 };
   /// ∂Poly/∂u, ∂v, ∂w: filled by PrepareIntervals() for the mean-value enclosure.
   Polynomial3 Gradient[3];
   bool HasGradient = false;

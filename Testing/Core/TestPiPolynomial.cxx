@@ -353,6 +353,54 @@ TEST(Polynomial3, DenseGradientIsTheDerivativesValue)
   }
 }
 
+// Quartics with only even powers (a torus or a superquadric about its centre) are
+// evaluated as a quadric of the squares: the value, the gradient and the axis
+// restrictions are the polynomial's.
+TEST(Polynomial3, EvenQuarticIsItsQuadricOfSquares)
+{
+  Random rng(12);
+  const int squares[10][3] = { { 0, 0, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, { 0, 0, 2 }, { 4, 0, 0 },
+    { 0, 4, 0 }, { 0, 0, 4 }, { 2, 2, 0 }, { 2, 0, 2 }, { 0, 2, 2 } };
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    Polynomial3 p;
+    for (int m = 0; m < 10; ++m)
+    {
+      if (m >= 4 && m <= 6 ? true : rng.Uniform(0, 1) < 0.6)
+      {
+        p.AddTerm(rng.Uniform(-2.0, 2.0), squares[m][0], squares[m][1], squares[m][2]);
+      }
+    }
+    const double scale = trial % 3 == 0 ? 30.0 : 1.5;
+    const Point q = rng.InBox(-scale, scale);
+    double g[3];
+    const double v = p.EvaluateWithGradient(q.data(), g);
+    const double magnitude = std::max(1.0, AbsEvaluate(p, q.data()));
+    EXPECT_TRUE(Near(v, NaiveEvaluate(p, q.data()), 1e-13 * magnitude)) << p.ToString();
+    for (int a = 0; a < 3; ++a)
+    {
+      const Polynomial3 d = p.Derivative(a);
+      EXPECT_TRUE(Near(g[a], d.Evaluate(q.data()), 1e-13 * std::max(1.0, AbsEvaluate(d, q.data())) * 4))
+        << "component " << a << " of the gradient of " << p.ToString();
+      double c[5];
+      p.RestrictToAxis(q.data(), a, c);
+      const int n = p.GetAxisDegree(a);
+      for (int k = 0; k < 3; ++k)
+      {
+        double x[3] = { q[0], q[1], q[2] };
+        x[a] = rng.Uniform(-scale, scale);
+        double along = 0.0;
+        for (int m = n; m >= 0; --m)
+        {
+          along = along * x[a] + c[m];
+        }
+        EXPECT_TRUE(Near(along, NaiveEvaluate(p, x), 1e-13 * std::max(1.0, AbsEvaluate(p, x))))
+          << "axis " << a << " of " << p.ToString();
+      }
+    }
+  }
+}
+
 TEST(Polynomial3, GradientIsExactForAKnownPolynomial)
 {
   // P = x³y²z − 4xz² + 7y: ∇P = (3x²y²z − 4z², 2x³yz + 7, x³y² − 8xz).

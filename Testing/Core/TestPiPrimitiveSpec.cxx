@@ -662,6 +662,68 @@ TEST(PrimitiveSpec, PolynomialPrimitiveUsesLocalCoordinatesAndParameters)
   EXPECT_FALSE(f.Bounded);
 }
 
+// An expression written about another point (the cup's handle torus about
+// (2.2a, 0, −1), the bowl's base about z = −2, a rotated cylinder's offset) is centred
+// there: far fewer terms, the same values as the expression, and its natural (as
+// written) enclosure still holds every value over a box.
+TEST(PrimitiveSpec, OffCentreExpressionsAreCentred)
+{
+  struct Case
+  {
+    const char* Expression;
+    double Shift[3];
+    size_t MaximumTerms;
+  };
+  const Case cases[] = {
+    { "((x-2.2*a)^2+(z+1)^2+y^2+0.5-0.01)^2-2*((x-2.2*a)^2+(z+1)^2)", { 2.2, 0, -1 }, 10 },
+    { "1/8*x^2+1/8*y^2+(z+2)^2-0.1", { 0, 0, -2 }, 4 },
+    { "((z+1)^2+10*x^2+10*y^2+19)^2-800*(x^2+y^2)", { 0, 0, -1 }, 10 },
+    { "((x+1)/0.1)^2+((y+1)/0.1)^2+(z/0.9)^2-0.5", { -1, -1, 0 }, 4 },
+  };
+  Random rng(31);
+  for (const Case& c : cases)
+  {
+    PrimitiveSpec s;
+    s.Type = PrimitiveType::Polynomial;
+    s.Expression = c.Expression;
+    s.Center[1] = 0.25; // the spec's own centre composes with the centring
+    PolynomialFactor f = Build(s, { { "a", 1.0 } });
+    f.PrepareIntervals();
+    EXPECT_LE(f.Poly.GetTerms().size(), c.MaximumTerms) << c.Expression;
+    Polynomial3 written;
+    std::string error;
+    ASSERT_TRUE(ParseExpression(c.Expression, { { "a", 1.0 } }, written, error));
+    EXPECT_GT(written.GetTerms().size(), f.Poly.GetTerms().size()) << c.Expression;
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(f.NaturalShift[a], c.Shift[a]) << c.Expression << " axis " << a;
+    }
+    for (int n = 0; n < 200; ++n)
+    {
+      const Point p = rng.InBox(-3, 3);
+      const double q[3] = { p[0], p[1] - 0.25, p[2] };
+      const double expected = written.Evaluate(q);
+      EXPECT_TRUE(Near(f.Evaluate(p.data()), expected, 1e-12 * ValueScale(f, p.data())))
+        << c.Expression << " at " << p[0] << " " << p[1] << " " << p[2];
+      // A small box about p: the enclosure holds the values at its corners and centre.
+      const double h = n % 2 ? 0.01 : 0.3;
+      const double box[6] = { p[0] - h, p[0] + h, p[1] - h, p[1] + h, p[2] - h, p[2] + h };
+      const Interval range = f.EvaluateInterval(box);
+      for (int corner = 0; corner < 9; ++corner)
+      {
+        double x[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          x[a] = corner == 8 ? p[a] : box[2 * a + ((corner >> a) & 1)];
+        }
+        const double v = f.Evaluate(x);
+        EXPECT_TRUE(range.Lo <= v && v <= range.Hi) << c.Expression << ": " << v << " outside ["
+                                                    << range.Lo << ", " << range.Hi << "]";
+      }
+    }
+  }
+}
+
 TEST(PrimitiveSpec, InvalidParametersNameTheParameter)
 {
   auto spec = [](PrimitiveType t) {
