@@ -608,6 +608,39 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
 {
   const int degree = std::max(this->Degree, 0);
   const int n = degree + 1;
+  if (this->EvenQuartic)
+  {
+    // Q2 of the squares s_k(t) = (o_k + t·d_k)², each a quadratic in t:
+    // Q2 = q0 + s0·(q1 + q4·s0 + q7·s1 + q8·s2) + s1·(q2 + q5·s1 + q9·s2) + s2·(q3 + q6·s2).
+    const double* q = this->Q2;
+    double sq[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      sq[k][0] = o[k] * o[k];
+      sq[k][1] = 2.0 * o[k] * d[k];
+      sq[k][2] = d[k] * d[k];
+    }
+    double inner[3][3];
+    for (int m = 0; m < 3; ++m)
+    {
+      inner[0][m] = (m == 0 ? q[1] : 0.0) + q[4] * sq[0][m] + q[7] * sq[1][m] + q[8] * sq[2][m];
+      inner[1][m] = (m == 0 ? q[2] : 0.0) + q[5] * sq[1][m] + q[9] * sq[2][m];
+      inner[2][m] = (m == 0 ? q[3] : 0.0) + q[6] * sq[2][m];
+    }
+    std::fill(out, out + n, 0.0);
+    out[0] = q[0];
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        for (int j = 0; j < 3; ++j)
+        {
+          out[i + j] += sq[k][i] * inner[k][j];
+        }
+      }
+    }
+    return;
+  }
   // A line along one axis (grid rows of unrotated primitives): only that axis's
   // binomial expansion, the other two variables are powers of o. The products are
   // formed in the general path's order, whose other terms are exact zeros here, so the

@@ -165,8 +165,8 @@ private:
   std::vector<double> Nested;
   // Quartics with only even powers (tori and superquadrics of exponent 4 about their
   // centre): a quadric of the squares (x², y², z²), whose dense coefficients are Q2 (Q's
-  // order). EvaluateWithGradient and RestrictToAxis then evaluate that quadric
-  // (Summarize).
+  // order). EvaluateWithGradient, RestrictToAxis and RestrictToLine then evaluate that
+  // quadric (Summarize).
   bool EvenQuartic = false;
   double Q2[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   // Σ over the group of power m on axis a of (C·lo^Lo)·hi^Hi, or with `inner` C·(lo^Lo·hi^Hi).

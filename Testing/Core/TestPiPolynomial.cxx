@@ -398,6 +398,23 @@ TEST(Polynomial3, EvenQuarticIsItsQuadricOfSquares)
           << "axis " << a << " of " << p.ToString();
       }
     }
+    // Along a line in any direction (and along an axis: grid rows).
+    const Point o = rng.InBox(-scale, scale);
+    Point d = rng.InBox(-1, 1);
+    if (trial % 4 == 0)
+    {
+      d = Point{ 0.0, 0.0, 0.0 };
+      d[trial % 3] = 0.7;
+    }
+    double c[5];
+    p.RestrictToLine(o.data(), d.data(), c);
+    for (double t : { -2.0, -0.3, 0.6, 1.5 })
+    {
+      const double x[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+      const double along = (((c[4] * t + c[3]) * t + c[2]) * t + c[1]) * t + c[0];
+      EXPECT_TRUE(Near(along, NaiveEvaluate(p, x), 1e-13 * std::max(1.0, AbsEvaluate(p, x)) * 8))
+        << "line restriction of " << p.ToString() << " at t = " << t;
+    }
   }
 }
 
