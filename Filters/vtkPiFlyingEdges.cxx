@@ -96,6 +96,10 @@ std::vector<double> FactorKey(const pisurf::PolynomialFactor& f)
 struct vtkPiFlyingEdges::vtkInternals
 {
   std::vector<double> Values;
+  // The rows the active blocks need and their factors' restrictions (kept between
+  // executions, like Values, so that a re-execution does not fault their pages in again).
+  std::vector<vtkIdType> RowIndex, Rows;
+  std::vector<double> Coefficients;
   std::shared_ptr<const pisurf::Field> Field;
   std::vector<double> CacheGrid; // the grid the factor caches belong to
   std::vector<FactorCache> Factors;
@@ -2094,8 +2098,10 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
 
   // PASS 2: restrict the factors to the rows the active blocks need.
-  std::vector<vtkIdType> rowIndex(vtkIdType(g.Dims[1]) * g.Dims[2], -1);
-  std::vector<vtkIdType> rows;
+  std::vector<vtkIdType>& rowIndex = this->Internals->RowIndex;
+  std::vector<vtkIdType>& rows = this->Internals->Rows;
+  rowIndex.assign(vtkIdType(g.Dims[1]) * g.Dims[2], -1);
+  rows.clear();
   for (int b : g.Active)
   {
     int c[3];
@@ -2115,7 +2121,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // FactorCache): only new factors and new rows are restricted.
   std::vector<FactorCache*> caches =
     PrepareFactorCaches(this->Internals->CacheGrid, this->Internals->Factors, kernel.get(), g);
-  std::vector<double> coefficients;
+  // (Every entry is written below: resized, not cleared.)
+  std::vector<double>& coefficients = this->Internals->Coefficients;
+  if (!kernel)
+  {
+    coefficients.clear();
+  }
   if (kernel)
   {
     // Every polynomial factor restricted to every row: with many factors this, not the
