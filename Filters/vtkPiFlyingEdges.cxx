@@ -33,6 +33,7 @@
 #include "vtkMassProperties.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -867,26 +868,20 @@ public:
     });
   }
 
+  // The flood fill from the boundary, in rounds: each round processes the blocks the
+  // last one reached (in parallel) and queues the blocks it reaches anew. A block's
+  // reached rows only gain bits, by atomic ORs (several blocks may add to one
+  // neighbour at once, and it may be flooding itself meanwhile), and a block that gains
+  // any is queued for the next round: the rounds end at the fixed point, the set of free
+  // points connected to the boundary, whatever the order (the same result as a serial
+  // flood).
   void Flood()
   {
     const int* count = this->G.Count;
-    std::vector<char> queued(this->G.Sign.size(), 0);
-    auto push = [&](vtkIdType b) {
-      if (!queued[b])
-      {
-        queued[b] = 1;
-        this->Queue.push_back(b);
-      }
-    };
-    // A skipped block met by the flood: reached (and queued) if it is a free one.
-    auto reachSkipped = [&](vtkIdType b) {
-      if (this->BlockState[b] == FreeBlock)
-      {
-        this->BlockState[b] = ReachedBlock;
-        push(b);
-      }
-    };
+    this->Queued.assign(this->G.Sign.size(), 0);
+    std::vector<vtkIdType> frontier;
     // Seeds: every free point on the boundary of the grid.
+    Pusher seeds{ this, &frontier };
     for (vtkIdType b = 0; b < static_cast<vtkIdType>(this->G.Sign.size()); ++b)
     {
       int c[3];
@@ -899,7 +894,7 @@ public:
       }
       if (this->G.Sign[b] != 0)
       {
-        reachSkipped(b);
+        this->ReachSkipped(b, seeds);
         continue;
       }
       int n[3];
@@ -920,74 +915,35 @@ public:
       }
       if (any)
       {
-        push(b);
+        seeds.Push(b);
       }
     }
-    while (!this->Queue.empty())
+    vtkSMPThreadLocal<std::vector<vtkIdType>> next;
+    while (!frontier.empty())
     {
-      const vtkIdType b = this->Queue.back();
-      this->Queue.pop_back();
-      queued[b] = 0;
-      int c[3];
-      this->G.BlockCoordinates(b, c);
-      if (this->G.Sign[b] != 0)
+      // Blocks reached again from now on are queued for the next round.
+      for (vtkIdType b : frontier)
       {
-        // A reached skipped block: every neighbour sharing points with it.
-        this->G.ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
-          if (this->G.Sign[nb] != 0)
+        this->Queued[b] = 0;
+      }
+      Envelope* self = this;
+      const std::vector<vtkIdType>* blocks = &frontier;
+      vtkSMPTools::For(0, static_cast<vtkIdType>(frontier.size()), 8,
+        [self, blocks, &next](vtkIdType begin, vtkIdType end) {
+          Pusher push{ self, &next.Local() };
+          for (vtkIdType m = begin; m < end; ++m)
           {
-            reachSkipped(nb);
-            return;
-          }
-          // The neighbour's points shared with this block (it sees this block at −d).
-          int m[3], nn[3], lo[3], hi[3];
-          this->G.BlockCoordinates(nb, m);
-          this->G.CellCounts(m, nn);
-          for (int a = 0; a < 3; ++a)
-          {
-            SharedPoints(-d[a], nn[a], lo[a], hi[a]);
-          }
-          if (this->Seed(this->G.Slot[nb], lo, hi))
-          {
-            push(nb);
+            self->Visit((*blocks)[m], push);
           }
         });
-        continue;
-      }
-      // An active block: flood it, then hand its reached face points to the neighbours.
-      const int slot = this->G.Slot[b];
-      this->FloodBlock(slot);
-      int n[3];
-      this->G.CellCounts(c, n);
-      const std::uint16_t* reached = this->Reached.GetPointer() + size_t(slot) * Rows;
-      for (int a = 0; a < 3; ++a)
+      frontier.clear();
+      for (std::vector<vtkIdType>& local : next)
       {
-        for (int side = 0; side < 2; ++side)
-        {
-          int m[3] = { c[0], c[1], c[2] };
-          m[a] += side ? 1 : -1;
-          if (m[a] < 0 || m[a] >= count[a])
-          {
-            continue;
-          }
-          const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
-          const int plane = side ? n[a] : 0;
-          if (this->G.Sign[nb] != 0)
-          {
-            if (this->FaceReached(reached, a, plane, n))
-            {
-              reachSkipped(nb);
-            }
-            continue;
-          }
-          int nn[3];
-          this->G.CellCounts(m, nn);
-          if (this->PassFace(reached, a, plane, n, this->G.Slot[nb], side ? 0 : nn[a]))
-          {
-            push(nb);
-          }
-        }
+        frontier.insert(frontier.end(), local.begin(), local.end());
+        local.clear();
       }
+      // In block order: each thread then works on its own stretch of the grid.
+      std::sort(frontier.begin(), frontier.end());
     }
   }
 
@@ -1019,6 +975,111 @@ private:
     return ((1u << (hi + 1)) - 1u) & ~((1u << lo) - 1u);
   }
 
+  // A row of reached bits, read and grown atomically (Flood's rounds are parallel).
+  static unsigned LoadRow(const std::uint16_t* row) { return __atomic_load_n(row, __ATOMIC_RELAXED); }
+  // Adds `bits` (not 0) to the row; true if any was not there yet.
+  static bool AddToRow(std::uint16_t* row, unsigned bits)
+  {
+    const unsigned old = __atomic_fetch_or(row, static_cast<std::uint16_t>(bits), __ATOMIC_RELAXED);
+    return (bits & ~old) != 0u;
+  }
+
+  // Queues blocks for the next round of the flood, each once per round.
+  struct Pusher
+  {
+    Envelope* Self;
+    std::vector<vtkIdType>* Out;
+    void Push(vtkIdType b)
+    {
+      // (A plain look first: most blocks are met several times per round, and a write
+      // to a shared cache line costs more than the read.)
+      char* queued = &this->Self->Queued[b];
+      if (__atomic_load_n(queued, __ATOMIC_RELAXED) == 0 &&
+        __atomic_exchange_n(queued, char(1), __ATOMIC_RELAXED) == 0)
+      {
+        this->Out->push_back(b);
+      }
+    }
+  };
+
+  // A skipped block met by the flood: reached (and queued) if it is a free one.
+  void ReachSkipped(vtkIdType b, Pusher& push)
+  {
+    char expected = FreeBlock;
+    if (this->BlockState[b] == FreeBlock &&
+      __atomic_compare_exchange_n(&this->BlockState[b], &expected, ReachedBlock, false,
+        __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+    {
+      push.Push(b);
+    }
+  }
+
+  // One block of a round: a reached skipped block reaches every neighbour sharing
+  // points with it; an active block floods itself, then hands its reached face points
+  // to its six face neighbours.
+  void Visit(vtkIdType b, Pusher& push)
+  {
+    const int* count = this->G.Count;
+    int c[3];
+    this->G.BlockCoordinates(b, c);
+    if (this->G.Sign[b] != 0)
+    {
+      this->G.ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
+        if (this->G.Sign[nb] != 0)
+        {
+          this->ReachSkipped(nb, push);
+          return;
+        }
+        // The neighbour's points shared with this block (it sees this block at −d).
+        int m[3], nn[3], lo[3], hi[3];
+        this->G.BlockCoordinates(nb, m);
+        this->G.CellCounts(m, nn);
+        for (int a = 0; a < 3; ++a)
+        {
+          SharedPoints(-d[a], nn[a], lo[a], hi[a]);
+        }
+        if (this->Seed(this->G.Slot[nb], lo, hi))
+        {
+          push.Push(nb);
+        }
+      });
+      return;
+    }
+    const int slot = this->G.Slot[b];
+    this->FloodBlock(slot);
+    int n[3];
+    this->G.CellCounts(c, n);
+    const std::uint16_t* reached = this->Reached.GetPointer() + size_t(slot) * Rows;
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        int m[3] = { c[0], c[1], c[2] };
+        m[a] += side ? 1 : -1;
+        if (m[a] < 0 || m[a] >= count[a])
+        {
+          continue;
+        }
+        const vtkIdType nb = this->G.BlockId(m[0], m[1], m[2]);
+        const int plane = side ? n[a] : 0;
+        if (this->G.Sign[nb] != 0)
+        {
+          if (this->FaceReached(reached, a, plane, n))
+          {
+            this->ReachSkipped(nb, push);
+          }
+          continue;
+        }
+        int nn[3];
+        this->G.CellCounts(m, nn);
+        if (this->PassFace(reached, a, plane, n, this->G.Slot[nb], side ? 0 : nn[a]))
+        {
+          push.Push(nb);
+        }
+      }
+    }
+  }
+
   // Marks the free points of rows [lo, hi] of block `slot` reached; true if any is new.
   bool Seed(int slot, const int lo[3], const int hi[3])
   {
@@ -1030,10 +1091,9 @@ private:
       for (int lj = lo[1]; lj <= hi[1]; ++lj)
       {
         const int r = lk * BlockPoints + lj;
-        const unsigned add = fr[r] & xs & ~unsigned(rr[r]);
-        if (add)
+        const unsigned add = fr[r] & xs & ~LoadRow(rr + r);
+        if (add && AddToRow(rr + r, add))
         {
-          rr[r] = static_cast<std::uint16_t>(rr[r] | add);
           added = true;
         }
       }
@@ -1050,7 +1110,7 @@ private:
         {
           continue;
         }
-        const unsigned r = reached[lk * BlockPoints + lj];
+        const unsigned r = LoadRow(reached + lk * BlockPoints + lj);
         if (a == 0 ? (r >> plane) & 1u : r != 0)
         {
           return true;
@@ -1073,7 +1133,7 @@ private:
         int to;
         if (a == 0)
         {
-          in = ((reached[lk * BlockPoints + lj] >> plane) & 1u) << target;
+          in = ((LoadRow(reached + lk * BlockPoints + lj) >> plane) & 1u) << target;
           to = lk * BlockPoints + lj;
         }
         else if (a == 1)
@@ -1082,7 +1142,7 @@ private:
           {
             continue;
           }
-          in = reached[lk * BlockPoints + lj];
+          in = LoadRow(reached + lk * BlockPoints + lj);
           to = lk * BlockPoints + target;
         }
         else
@@ -1091,13 +1151,12 @@ private:
           {
             continue;
           }
-          in = reached[lk * BlockPoints + lj];
+          in = LoadRow(reached + lk * BlockPoints + lj);
           to = target * BlockPoints + lj;
         }
-        const unsigned add = in & fr[to] & ~unsigned(rr[to]);
-        if (add)
+        const unsigned add = in & fr[to] & ~LoadRow(rr + to);
+        if (add && AddToRow(rr + to, add))
         {
-          rr[to] = static_cast<std::uint16_t>(rr[to] | add);
           added = true;
         }
       }
@@ -1134,12 +1193,12 @@ private:
         for (int lj = 0; lj <= ny; ++lj)
         {
           const int r = lk * BlockPoints + lj;
-          unsigned x = rr[r];
-          unsigned from = (lj > 0 ? rr[r - 1] : 0u) | (lk > 0 ? rr[r - BlockPoints] : 0u);
-          x = spread(x | (from & fr[r]), fr[r]);
-          if (x != rr[r])
+          const unsigned old = LoadRow(rr + r);
+          unsigned from =
+            (lj > 0 ? LoadRow(rr + r - 1) : 0u) | (lk > 0 ? LoadRow(rr + r - BlockPoints) : 0u);
+          const unsigned x = spread(old | (from & fr[r]), fr[r]);
+          if (x != old && AddToRow(rr + r, x & ~old))
           {
-            rr[r] = static_cast<std::uint16_t>(x);
             changed = true;
           }
         }
@@ -1147,13 +1206,12 @@ private:
         for (int lj = ny; lj >= 0; --lj)
         {
           const int r = lk * BlockPoints + lj;
-          unsigned x = rr[r];
-          unsigned from =
-            (lj < ny ? rr[r + 1] : 0u) | (lk < nz ? rr[r + BlockPoints] : 0u);
-          x = spread(x | (from & fr[r]), fr[r]);
-          if (x != rr[r])
+          const unsigned old = LoadRow(rr + r);
+          unsigned from = (lj < ny ? LoadRow(rr + r + 1) : 0u) |
+            (lk < nz ? LoadRow(rr + r + BlockPoints) : 0u);
+          const unsigned x = spread(old | (from & fr[r]), fr[r]);
+          if (x != old && AddToRow(rr + r, x & ~old))
           {
-            rr[r] = static_cast<std::uint16_t>(x);
             changed = true;
           }
         }
@@ -1164,7 +1222,7 @@ private:
   int Outside;
   std::vector<char> BlockState; // skipped blocks: FreeBlock, ReachedBlock or 0
   pisurf::Buffer<std::uint16_t> Free, Reached; // per active block: Rows masks each
-  std::vector<vtkIdType> Queue;
+  std::vector<char> Queued; // per block: queued for the flood's next round
 };
 
 // PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge
