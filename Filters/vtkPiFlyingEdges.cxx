@@ -869,7 +869,8 @@ public:
   }
 
   // The flood fill from the boundary, in rounds: each round processes the blocks the
-  // last one reached (in parallel) and queues the blocks it reaches anew. A block's
+  // last one reached (in parallel), each followed by up to 64 blocks it reaches
+  // (depth first), and queues the rest of what it reaches for the next. A block's
   // reached rows only gain bits, by atomic ORs (several blocks may add to one
   // neighbour at once, and it may be flooding itself meanwhile), and a block that gains
   // any is queued for the next round: the rounds end at the fixed point, the set of free
@@ -930,10 +931,21 @@ public:
       const std::vector<vtkIdType>* blocks = &frontier;
       vtkSMPTools::For(0, static_cast<vtkIdType>(frontier.size()), 8,
         [self, blocks, &next](vtkIdType begin, vtkIdType end) {
-          Pusher push{ self, &next.Local() };
+          std::vector<vtkIdType>& stack = next.Local();
+          Pusher push{ self, &stack };
           for (vtkIdType m = begin; m < end; ++m)
           {
             self->Visit((*blocks)[m], push);
+            // Then what that reached, depth first, up to a budget (a serial flood's
+            // order: a region is usually finished before its blocks are met again);
+            // the rest waits for the next round.
+            for (int budget = 64; budget > 0 && !stack.empty(); --budget)
+            {
+              const vtkIdType b = stack.back();
+              stack.pop_back();
+              __atomic_store_n(&self->Queued[b], char(0), __ATOMIC_RELAXED);
+              self->Visit(b, push);
+            }
           }
         });
       frontier.clear();

@@ -866,6 +866,47 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
   }
   const int m = n + 1;
   std::fill(b, b + m * m * m, 0.0);
+  if (this->EvenQuartic)
+  {
+    // Q2 of the squares s_a(u) = (c_a + h_a·u)² = c_a² + 2c_a·h_a·u + h_a²·u²: the
+    // linear terms and squares of one axis, and the products of two axes' quadratics
+    // (at most 4 roundings per product and 9 per sum: within the (3n+3)·ε above).
+    const int stride[3] = { m * m, m, 1 };
+    double sq[3][3];
+    for (int a = 0; a < 3; ++a)
+    {
+      sq[a][0] = c[a] * c[a];
+      sq[a][1] = 2.0 * (c[a] * h[a]);
+      sq[a][2] = h[a] * h[a];
+    }
+    const double* q = this->Q2;
+    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
+    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+    b[0] = q[0];
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        b[i * stride[a]] += q[Linear[a]] * sq[a][i];
+        for (int j = 0; j < 3; ++j)
+        {
+          b[(i + j) * stride[a]] += q[Square[a]] * sq[a][i] * sq[a][j];
+        }
+      }
+      for (int e = a + 1; e < 3; ++e)
+      {
+        const double qc = q[Cross[a][e]];
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            b[i * stride[a] + j * stride[e]] += qc * sq[a][i] * sq[e][j];
+          }
+        }
+      }
+    }
+    return n;
+  }
   for (const auto& t : this->Terms)
   {
     b[(t.I * m + t.J) * m + t.K] = t.Coefficient;

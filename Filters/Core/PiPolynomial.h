@@ -87,6 +87,8 @@ public:
   /// coefficients 1, x, y, z, x², y², z², xy, xz, yz (all 0 for the zero polynomial),
   /// for QuadricStar.
   bool IsQuadric() const { return this->Quadric; }
+  /// Degree 4 with only even powers of x, y and z (a quadric of their squares).
+  bool IsEvenQuartic() const { return this->EvenQuartic; }
   const double* GetQuadric() const { return this->Q; }
   /// At p and at the six points p ± step[a]·e_a, with the gradient at p, in one pass:
   /// the terms are summed by the power of each variable separately (three partial-sum
@@ -165,8 +167,8 @@ private:
   std::vector<double> Nested;
   // Quartics with only even powers (tori and superquadrics of exponent 4 about their
   // centre): a quadric of the squares (x², y², z²), whose dense coefficients are Q2 (Q's
-  // order). EvaluateWithGradient, RestrictToAxis and RestrictToLine then evaluate that
-  // quadric (Summarize).
+  // order). EvaluateWithGradient, RestrictToAxis, RestrictToLine and ExpandAbout then
+  // evaluate that quadric (Summarize).
   bool EvenQuartic = false;
   double Q2[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   // Σ over the group of power m on axis a of (C·lo^Lo)·hi^Hi, or with `inner` C·(lo^Lo·hi^Hi).
