@@ -866,6 +866,30 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
   }
   const int m = n + 1;
   std::fill(b, b + m * m * m, 0.0);
+  if (this->Quadric && n == 2)
+  {
+    // Q(c + h∘u): the value and gradient at c (QuadricValueOf, QuadricGradientOf) times
+    // h, the squares' and cross terms' coefficients times their h's (at most 6
+    // roundings per coefficient: within the (3n+3)·ε above).
+    const double* q = this->Q;
+    double v, g[3];
+    QuadricValueOf(q, c[0], c[1], c[2], v);
+    QuadricGradientOf(q, c[0], c[1], c[2], g);
+    static constexpr int Square[3] = { 4, 5, 6 };
+    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+    const int stride[3] = { m * m, m, 1 };
+    b[0] = v;
+    for (int a = 0; a < 3; ++a)
+    {
+      b[stride[a]] = g[a] * h[a];
+      b[2 * stride[a]] = q[Square[a]] * (h[a] * h[a]);
+      for (int e = a + 1; e < 3; ++e)
+      {
+        b[stride[a] + stride[e]] = q[Cross[a][e]] * (h[a] * h[e]);
+      }
+    }
+    return n;
+  }
   if (this->EvenQuartic)
   {
     // Q2 of the squares s_a(u) = (c_a + h_a·u)² = c_a² + 2c_a·h_a·u + h_a²·u²: the

@@ -418,6 +418,63 @@ TEST(Polynomial3, EvenQuarticIsItsQuadricOfSquares)
   }
 }
 
+// ExpandAbout: the dense coefficients b of u -> P(c + h∘u) give P's values at c + h∘u,
+// for random polynomials of degree 0 to 6 and the forms with their own paths (quadrics,
+// quartics in the squares only).
+TEST(Polynomial3, ExpandAboutGivesTheShiftedPolynomial)
+{
+  Random rng(13);
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    Polynomial3 p;
+    const int kind = trial % 3;
+    const int degree = kind == 0 ? trial % 7 : (kind == 1 ? 2 : 4);
+    for (int k = 0; k <= degree; ++k)
+      for (int j = 0; j + k <= degree; ++j)
+        for (int i = 0; i + j + k <= degree; ++i)
+        {
+          const bool even = i % 2 == 0 && j % 2 == 0 && k % 2 == 0;
+          if ((kind != 2 || even) && (rng.Uniform(0, 1) < 0.7 || i + j + k == degree))
+          {
+            p.AddTerm(rng.Uniform(-2.0, 2.0), i, j, k);
+          }
+        }
+    if (kind == 2)
+    {
+      ASSERT_TRUE(p.IsEvenQuartic()) << p.ToString();
+    }
+    const Point c = rng.InBox(-3, 3);
+    const Point h = rng.InBox(-1, 1);
+    double b[9 * 9 * 9];
+    const int n = p.ExpandAbout(c.data(), h.data(), b);
+    ASSERT_EQ(n, p.GetDegree());
+    if (n < 0)
+    {
+      continue;
+    }
+    const int m = n + 1;
+    for (int s = 0; s < 5; ++s)
+    {
+      const Point u = rng.InBox(-1, 1);
+      double value = 0.0;
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j)
+          for (int k = 0; k <= n; ++k)
+          {
+            const double bk = b[(i * m + j) * m + k];
+            if (i + j + k > n)
+            {
+              EXPECT_EQ(bk, 0.0);
+            }
+            value += bk * std::pow(u[0], i) * std::pow(u[1], j) * std::pow(u[2], k);
+          }
+      const double x[3] = { c[0] + h[0] * u[0], c[1] + h[1] * u[1], c[2] + h[2] * u[2] };
+      EXPECT_TRUE(Near(value, NaiveEvaluate(p, x), 1e-12 * std::max(1.0, AbsEvaluate(p, x))))
+        << p.ToString() << " about " << c[0] << " " << c[1] << " " << c[2];
+    }
+  }
+}
+
 TEST(Polynomial3, GradientIsExactForAKnownPolynomial)
 {
   // P = x³y²z − 4xz² + 7y: ∇P = (3x²y²z − 4z², 2x³yz + 7, x³y² − 8xz).
