@@ -1429,6 +1429,7 @@ struct Contour
       }
       // The cells with both signs among their corners, row by row (i ascending).
       vtkIdType triangle = this->Pass == Count ? 0 : (*this->TriangleCount)[s];
+      const vtkIdType blockFirst = this->Pass == Count ? 0 : (*this->VertexCount)[s];
       const unsigned cells = (1u << n[0]) - 1u;
       for (int lk = 0; lk < n[2]; ++lk)
         for (int lj = 0; lj < n[1]; ++lj)
@@ -1458,8 +1459,13 @@ struct Contour
               for (int q = 0; q < 3; ++q)
               {
                 const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + q]];
-                const vtkIdType id =
-                  this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
+                const int ei = li + edge.Lo[0], ej = lj + edge.Lo[1], ek = lk + edge.Lo[2];
+                // An edge this block owns (lower end at local 0..7): its own masks,
+                // without finding the block (VertexOf's numbers).
+                const vtkIdType id = (ei < BlockCells && ej < BlockCells && ek < BlockCells)
+                  ? blockFirst + offsets[EdgeRow(edge.Axis, ek, ej)] +
+                    BitCount(masks[EdgeRow(edge.Axis, ek, ej)] & ((1u << ei) - 1u))
+                  : this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
                 // Corners 1 and 2 swapped: the table winds triangles for "inside =
                 // positive", ours face ∇F.
                 const vtkIdType at = 3 * triangle + (q == 0 ? 0 : 3 - q);
