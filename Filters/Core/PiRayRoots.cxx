@@ -1041,12 +1041,16 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     total += counts[i];
   }
+  // Every coefficient finite: c·0 is 0 for a finite c and NaN for ±inf or NaN, so the
+  // sum is NaN exactly when one is not (no branch per coefficient).
+  double poison = 0.0;
   for (size_t k = 0; k < total; ++k)
   {
-    if (!std::isfinite(coefficients[k]))
-    {
-      return false;
-    }
+    poison += coefficients[k] * 0.0;
+  }
+  if (poison != 0.0)
+  {
+    return false;
   }
   roots.clear();
   {

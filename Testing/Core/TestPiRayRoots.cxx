@@ -234,6 +234,9 @@ TEST(RayRoots, BadInputIsRefused)
   std::vector<RayRoot> roots;
   RayRootOptions options;
   EXPECT_FALSE(FindRayRoots({ { 1, NAN } }, 0, 0, 1, options, roots));
+  EXPECT_FALSE(FindRayRoots({ { 1, 2 }, { HUGE_VAL, 1, 3 } }, 0, 0, 1, options, roots));
+  EXPECT_FALSE(FindRayRoots({ { 1, 2 }, { 1, -HUGE_VAL, 3 } }, 0, 0, 1, options, roots));
+  EXPECT_TRUE(FindRayRoots({ { 1, 2 }, { 1e300, 1, 3 } }, 0, 0, 1, options, roots));
   EXPECT_FALSE(FindRayRoots({ { 1, 1 } }, NAN, 0, 1, options, roots));
   EXPECT_FALSE(FindRayRoots({ { 1, 1 } }, 0, 1, 0, options, roots));
   EXPECT_FALSE(FindRayRoots({ {} }, 0, 0, 1, options, roots));
