@@ -448,12 +448,9 @@ double NewtonRoot(
     }
     const double step = v / dv;
     double next = t - step;
-    if (!std::isfinite(next) || !(next > a && next < b))
-    {
-      t = 0.5 * (a + b);
-      continue;
-    }
-    if (std::fabs(step) < 0.25 * width)
+    // (Tested before the bracket: a step below t's rounding leaves next = t, an end of
+    // the bracket, where the test below would bisect a bracket whose root is at hand.)
+    if (std::isfinite(next) && std::fabs(step) < 0.25 * width)
     {
       // Close: [t, u] around the predicted root, u a quarter width beyond it.
       const double u = step < 0 ? std::min(next + 0.25 * width, b) : std::max(next - 0.25 * width, a);
@@ -476,7 +473,13 @@ double NewtonRoot(
       {
         b = u;
       }
-      next = 0.5 * (a + b);
+      t = 0.5 * (a + b);
+      continue;
+    }
+    if (!std::isfinite(next) || !(next > a && next < b))
+    {
+      t = 0.5 * (a + b);
+      continue;
     }
     t = next;
   }
