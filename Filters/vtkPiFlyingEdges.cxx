@@ -820,6 +820,17 @@ public:
           {
             const int q = (lk * BlockPoints + lj) * BlockPoints;
             unsigned bits = 0;
+            if (!checkField)
+            {
+              // The sign alone, without the field's branches in the loop.
+              for (int li = 0; li <= n[0]; ++li)
+              {
+                bits |= unsigned(v[q + li] >= 0) << li;
+              }
+              fr[lk * BlockPoints + lj] =
+                static_cast<std::uint16_t>(outside > 0 ? bits : ~bits & ((2u << n[0]) - 1u));
+              continue;
+            }
             for (int li = 0; li <= n[0]; ++li)
             {
               bool free = (v[q + li] >= 0) == (outside > 0);
