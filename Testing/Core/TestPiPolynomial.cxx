@@ -314,6 +314,22 @@ TEST(Polynomial3, GradientMatchesFiniteDifferences)
   }
 }
 
+// EvaluateWithGradient at q against the term sums and the exact derivatives.
+static void ExpectValueAndGradient(const Polynomial3& p, const Point& q)
+{
+  double g[3];
+  const double v = p.EvaluateWithGradient(q.data(), g);
+  const double magnitude = std::max(1.0, AbsEvaluate(p, q.data()));
+  EXPECT_TRUE(Near(v, NaiveEvaluate(p, q.data()), 1e-13 * magnitude)) << p.ToString();
+  for (int a = 0; a < 3; ++a)
+  {
+    const Polynomial3 d = p.Derivative(a);
+    EXPECT_TRUE(Near(g[a], d.Evaluate(q.data()),
+      1e-13 * std::max(1.0, AbsEvaluate(d, q.data())) * std::max(p.GetDegree(), 1)))
+      << "component " << a << " of the gradient of " << p.ToString();
+  }
+}
+
 // Dense polynomials of degree 3 to 6 (tori, expanded products) take nested Horner's
 // rule: value and gradient as the term sums and the exact derivatives give them, also
 // with some coefficients absent, and the polynomial's own frame of large coordinates.
@@ -338,18 +354,7 @@ TEST(Polynomial3, DenseGradientIsTheDerivativesValue)
       }
     }
     const double scale = trial % 3 == 0 ? 30.0 : 1.5;
-    const Point q = rng.InBox(-scale, scale);
-    double g[3];
-    const double v = p.EvaluateWithGradient(q.data(), g);
-    const double magnitude = std::max(1.0, AbsEvaluate(p, q.data()));
-    EXPECT_TRUE(Near(v, NaiveEvaluate(p, q.data()), 1e-13 * magnitude)) << p.ToString();
-    for (int a = 0; a < 3; ++a)
-    {
-      const Polynomial3 d = p.Derivative(a);
-      EXPECT_TRUE(Near(g[a], d.Evaluate(q.data()),
-        1e-13 * std::max(1.0, AbsEvaluate(d, q.data())) * degree))
-        << "component " << a << " of the gradient of " << p.ToString();
-    }
+    ExpectValueAndGradient(p, rng.InBox(-scale, scale));
   }
 }
 
@@ -373,15 +378,9 @@ TEST(Polynomial3, EvenQuarticIsItsQuadricOfSquares)
     }
     const double scale = trial % 3 == 0 ? 30.0 : 1.5;
     const Point q = rng.InBox(-scale, scale);
-    double g[3];
-    const double v = p.EvaluateWithGradient(q.data(), g);
-    const double magnitude = std::max(1.0, AbsEvaluate(p, q.data()));
-    EXPECT_TRUE(Near(v, NaiveEvaluate(p, q.data()), 1e-13 * magnitude)) << p.ToString();
+    ExpectValueAndGradient(p, q);
     for (int a = 0; a < 3; ++a)
     {
-      const Polynomial3 d = p.Derivative(a);
-      EXPECT_TRUE(Near(g[a], d.Evaluate(q.data()), 1e-13 * std::max(1.0, AbsEvaluate(d, q.data())) * 4))
-        << "component " << a << " of the gradient of " << p.ToString();
       double c[5];
       p.RestrictToAxis(q.data(), a, c);
       const int n = p.GetAxisDegree(a);
