@@ -29,7 +29,9 @@
  * 4. With OuterEnvelope, a flood fill from the boundary of the grid finds the outside
  *    region (see SetOuterEnvelope): skipped blocks are single nodes; an active block
  *    floods its points as bit masks (one per row of 9 points: free and reached) and
- *    hands the points it reaches on a face to the neighbour across it.
+ *    hands the points it reaches on a face to the neighbour across it. The fill runs in
+ *    rounds over the blocks reached in the round before, threaded (reached bits are
+ *    only added, atomically): the same fixed point as a serial fill.
  * 5. Marching cubes, with VTK's case table (vtkMarchingCubesTriangleCases, the one
  *    vtkFlyingEdges3D also uses, so the same triangles), over the cells of the active
  *    blocks only, from the same row bit masks of the signs: the crossing edges of a row
