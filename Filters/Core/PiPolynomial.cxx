@@ -608,6 +608,18 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
 {
   const int degree = std::max(this->Degree, 0);
   const int n = degree + 1;
+  if (this->Quadric && this->Degree == 2)
+  {
+    // Q(o + t·d) = Q(o) + (∇Q(o)·d)·t + Q₂(d)·t², Q₂ the quadratic part.
+    const double* q = this->Q;
+    double g[3];
+    QuadricValueOf(q, o[0], o[1], o[2], out[0]);
+    QuadricGradientOf(q, o[0], o[1], o[2], g);
+    out[1] = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+    out[2] = d[0] * (q[4] * d[0] + q[7] * d[1] + q[8] * d[2]) + d[1] * (q[5] * d[1] + q[9] * d[2]) +
+      q[6] * d[2] * d[2];
+    return;
+  }
   if (this->EvenQuartic)
   {
     // Q2 of the squares s_k(t) = (o_k + t·d_k)², each a quadratic in t:

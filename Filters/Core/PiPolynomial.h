@@ -111,7 +111,8 @@ public:
   Polynomial3 Derivative(int axis) const;
   /// Coefficients c[0..degree] of t -> P(o + t·d) (exact substitution, ascending powers).
   std::vector<double> RestrictToLine(const double o[3], const double d[3]) const;
-  /// The same into out[0..degree] without allocating (hot path of grid sampling).
+  /// The same into out[0..degree] without allocating (hot path of grid sampling);
+  /// quadrics (and quartics in the squares only) from their dense coefficients.
   void RestrictToLine(const double o[3], const double d[3], double* out) const;
   /// The coefficients of u -> P(c + h∘u) (a Taylor shift to c on each axis, then the
   /// scaling by h), dense: b[(i·(n+1) + j)·(n+1) + k] multiplies u^i v^j w^k, n the
