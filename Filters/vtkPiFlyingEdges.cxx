@@ -1312,16 +1312,23 @@ struct Contour
   }
   static int EdgeRow(int axis, int lk, int lj) { return (axis * BlockCells + lk) * BlockCells + lj; }
 
+  // The vertex id of the crossing edge its block `slot` owns at local lower end
+  // (li, lj, lk), each in 0..7: the block's first id, the row's offset and the
+  // crossings before it in the row.
+  vtkIdType OwnedVertex(int slot, int li, int lj, int lk, int axis) const
+  {
+    const size_t row = size_t(slot) * EdgeRows + EdgeRow(axis, lk, lj);
+    return (*this->VertexCount)[slot] + this->EdgeOffsets[row] +
+      BitCount(this->EdgeMasks[row] & ((1u << li) - 1u));
+  }
+
   // The vertex id of the crossing edge (i, j, k, axis) (grid indices of its lower end).
   vtkIdType VertexOf(int i, int j, int k, int axis) const
   {
     const int c[3] = { i / BlockCells, j / BlockCells, k / BlockCells };
     const int slot = this->G->Slot[this->G->BlockId(c[0], c[1], c[2])];
-    const int row = EdgeRow(axis, k - c[2] * BlockCells, j - c[1] * BlockCells);
-    const unsigned before =
-      this->EdgeMasks[size_t(slot) * EdgeRows + row] & ((1u << (i - c[0] * BlockCells)) - 1u);
-    return (*this->VertexCount)[slot] + this->EdgeOffsets[size_t(slot) * EdgeRows + row] +
-      BitCount(before);
+    return this->OwnedVertex(
+      slot, i - c[0] * BlockCells, j - c[1] * BlockCells, k - c[2] * BlockCells, axis);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
@@ -1440,7 +1447,6 @@ struct Contour
       }
       // The cells with both signs among their corners, row by row (i ascending).
       vtkIdType triangle = this->Pass == Count ? 0 : (*this->TriangleCount)[s];
-      const vtkIdType blockFirst = this->Pass == Count ? 0 : (*this->VertexCount)[s];
       const unsigned cells = (1u << n[0]) - 1u;
       for (int lk = 0; lk < n[2]; ++lk)
         for (int lj = 0; lj < n[1]; ++lj)
@@ -1474,8 +1480,7 @@ struct Contour
                 // An edge this block owns (lower end at local 0..7): its own masks,
                 // without finding the block (VertexOf's numbers).
                 const vtkIdType id = (ei < BlockCells && ej < BlockCells && ek < BlockCells)
-                  ? blockFirst + offsets[EdgeRow(edge.Axis, ek, ej)] +
-                    BitCount(masks[EdgeRow(edge.Axis, ek, ej)] & ((1u << ei) - 1u))
+                  ? this->OwnedVertex(static_cast<int>(s), ei, ej, ek, edge.Axis)
                   : this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
                 // Corners 1 and 2 swapped: the table winds triangles for "inside =
                 // positive", ours face ∇F.
@@ -2214,7 +2219,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   {
     coefficients.clear();
   }
-  if (kernel)
+  else
   {
     // Every polynomial factor restricted to every row: with many factors this, not the
     // grid, is the largest array. It shares the grid's cap.

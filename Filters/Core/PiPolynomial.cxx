@@ -887,17 +887,15 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
     double v, g[3];
     QuadricValueOf(q, c[0], c[1], c[2], v);
     QuadricGradientOf(q, c[0], c[1], c[2], g);
-    static constexpr int Square[3] = { 4, 5, 6 };
-    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
     const int stride[3] = { m * m, m, 1 };
     b[0] = v;
     for (int a = 0; a < 3; ++a)
     {
       b[stride[a]] = g[a] * h[a];
-      b[2 * stride[a]] = q[Square[a]] * (h[a] * h[a]);
+      b[2 * stride[a]] = q[QuadricSquare[a]] * (h[a] * h[a]);
       for (int e = a + 1; e < 3; ++e)
       {
-        b[stride[a] + stride[e]] = q[Cross[a][e]] * (h[a] * h[e]);
+        b[stride[a] + stride[e]] = q[QuadricCross[a][e]] * (h[a] * h[e]);
       }
     }
     return n;
@@ -916,22 +914,20 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
       sq[a][2] = h[a] * h[a];
     }
     const double* q = this->Q2;
-    static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
-    static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
     b[0] = q[0];
     for (int a = 0; a < 3; ++a)
     {
       for (int i = 0; i < 3; ++i)
       {
-        b[i * stride[a]] += q[Linear[a]] * sq[a][i];
+        b[i * stride[a]] += q[QuadricLinear[a]] * sq[a][i];
         for (int j = 0; j < 3; ++j)
         {
-          b[(i + j) * stride[a]] += q[Square[a]] * sq[a][i] * sq[a][j];
+          b[(i + j) * stride[a]] += q[QuadricSquare[a]] * sq[a][i] * sq[a][j];
         }
       }
       for (int e = a + 1; e < 3; ++e)
       {
-        const double qc = q[Cross[a][e]];
+        const double qc = q[QuadricCross[a][e]];
         for (int i = 0; i < 3; ++i)
         {
           for (int j = 0; j < 3; ++j)

@@ -195,18 +195,21 @@ inline void QuadricGradientOf(const T* q, const T& x, const T& y, const T& z, T*
   g[1] = q[2] + 2 * q[5] * y + q[7] * x + q[9] * z;
   g[2] = q[3] + 2 * q[6] * z + q[8] * x + q[9] * y;
 }
+/// Slots of the dense quadric coefficients: the linear term and the square of axis a,
+/// and the cross term of axes a != b (−1 on the diagonal).
+constexpr int QuadricLinear[3] = { 1, 2, 3 }, QuadricSquare[3] = { 4, 5, 6 };
+constexpr int QuadricCross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
+
 /// The coefficients c0 + c1·s + c2·s² of s -> Q(p with p[axis] = s), where qu and qw are
 /// p's other two coordinates (axis + 1 and axis + 2, cyclically).
 template <class T>
 inline void QuadricOnAxisOf(const T* Q, const T& qu, const T& qw, int axis, T& c0, T& c1, T& c2)
 {
-  static constexpr int Linear[3] = { 1, 2, 3 }, Square[3] = { 4, 5, 6 };
-  static constexpr int Cross[3][3] = { { -1, 7, 8 }, { 7, -1, 9 }, { 8, 9, -1 } };
   const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-  c0 = Q[0] + Q[Linear[u]] * qu + Q[Linear[w]] * qw + Q[Square[u]] * qu * qu +
-    Q[Square[w]] * qw * qw + Q[Cross[u][w]] * qu * qw;
-  c1 = Q[Linear[axis]] + Q[Cross[axis][u]] * qu + Q[Cross[axis][w]] * qw;
-  c2 = Q[Square[axis]];
+  c0 = Q[0] + Q[QuadricLinear[u]] * qu + Q[QuadricLinear[w]] * qw + Q[QuadricSquare[u]] * qu * qu +
+    Q[QuadricSquare[w]] * qw * qw + Q[QuadricCross[u][w]] * qu * qw;
+  c1 = Q[QuadricLinear[axis]] + Q[QuadricCross[axis][u]] * qu + Q[QuadricCross[axis][w]] * qw;
+  c2 = Q[QuadricSquare[axis]];
 }
 
 /// The value of a dense quadric.
