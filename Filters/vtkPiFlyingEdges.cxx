@@ -6,6 +6,7 @@
 #include "PiLastValidOutput.h"
 
 #include "PiBuffer.h"
+#include "PiLargeArrays.h"
 #include "PiEdgeFlips.h"
 #include "PiField.h"
 #include "PiModel.h"
@@ -2373,12 +2374,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vtkNew<vtkTypeInt32Array> connectivity32;
   if (narrow)
   {
-    connectivity32->SetNumberOfValues(3 * triangles);
+    PiAllocateLarge(connectivity32.GetPointer(), 3 * triangles);
     contour.TriangleIds32 = connectivity32->GetPointer(0);
   }
   else
   {
-    connectivity->SetNumberOfValues(3 * triangles);
+    PiAllocateLarge(connectivity.GetPointer(), 3 * triangles);
     contour.TriangleIds = connectivity->GetPointer(0);
   }
   // Edge tables first (triangles look up neighbours' tables), then the triangles.
@@ -2433,20 +2434,25 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // PASS 7: vertices.
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(vertices);
+  {
+    vtkNew<vtkDoubleArray> xyz;
+    xyz->SetNumberOfComponents(3);
+    PiAllocateLarge(xyz.GetPointer(), vertices);
+    points->SetData(xyz);
+  }
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(vertices);
+  PiAllocateLarge(normals.GetPointer(), vertices);
   vtkNew<vtkIntArray> factor;
   factor->SetName("Factor");
-  factor->SetNumberOfTuples(vertices);
+  PiAllocateLarge(factor.GetPointer(), vertices);
   vtkSmartPointer<vtkDoubleArray> gradientMagnitude;
   if (this->ComputeGradientMagnitude)
   {
     gradientMagnitude = vtkSmartPointer<vtkDoubleArray>::New();
     gradientMagnitude->SetName("GradientMagnitude");
-    gradientMagnitude->SetNumberOfTuples(vertices);
+    PiAllocateLarge(gradientMagnitude.GetPointer(), vertices);
   }
   const double size = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
     (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
@@ -2480,14 +2486,14 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   if (narrow)
   {
     vtkNew<vtkTypeInt32Array> offsets;
-    offsets->SetNumberOfValues(triangles + 1);
+    PiAllocateLarge(offsets.GetPointer(), triangles + 1);
     fillOffsets(offsets->GetPointer(0));
     polys->SetData(offsets, connectivity32);
   }
   else
   {
     vtkNew<vtkIdTypeArray> offsets;
-    offsets->SetNumberOfValues(triangles + 1);
+    PiAllocateLarge(offsets.GetPointer(), triangles + 1);
     fillOffsets(offsets->GetPointer(0));
     polys->SetData(offsets, connectivity);
   }

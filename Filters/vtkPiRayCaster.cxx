@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
 #include "PiBuffer.h"
+#include "PiLargeArrays.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
@@ -966,36 +967,41 @@ int vtkPiRayCaster::RequestData(
   const bool extraRows = rowBegin != pieceBegin || rowEnd != pieceEnd;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
+  {
+    vtkNew<vtkDoubleArray> xyz;
+    xyz->SetNumberOfComponents(3);
+    PiAllocateLarge(xyz.GetPointer(), n);
+    points->SetData(xyz);
+  }
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
+  PiAllocateLarge(normals.GetPointer(), n);
   vtkNew<vtkDoubleArray> gradient;
   gradient->SetName("GradientMagnitude");
-  gradient->SetNumberOfTuples(n);
+  PiAllocateLarge(gradient.GetPointer(), n);
   vtkNew<vtkDoubleArray> depth;
   depth->SetName("Depth");
-  depth->SetNumberOfTuples(n);
+  PiAllocateLarge(depth.GetPointer(), n);
   vtkNew<vtkIntArray> pixel;
   pixel->SetName("PixelIndex");
   pixel->SetNumberOfComponents(2);
-  pixel->SetNumberOfTuples(n);
+  PiAllocateLarge(pixel.GetPointer(), n);
   vtkNew<vtkIntArray> viewIndex;
   viewIndex->SetName("ViewIndex");
-  viewIndex->SetNumberOfTuples(n);
+  PiAllocateLarge(viewIndex.GetPointer(), n);
   vtkNew<vtkIntArray> hitIndex;
   hitIndex->SetName("HitIndex");
-  hitIndex->SetNumberOfTuples(n);
+  PiAllocateLarge(hitIndex.GetPointer(), n);
   vtkNew<vtkUnsignedCharArray> singular;
   singular->SetName("Singular");
-  singular->SetNumberOfTuples(n);
+  PiAllocateLarge(singular.GetPointer(), n);
   vtkNew<vtkUnsignedCharArray> tangent;
   tangent->SetName("Tangent");
-  tangent->SetNumberOfTuples(n);
+  PiAllocateLarge(tangent.GetPointer(), n);
   vtkNew<vtkIntArray> factor;
   factor->SetName("Factor");
-  factor->SetNumberOfTuples(n);
+  PiAllocateLarge(factor.GetPointer(), n);
   const double probe = 1e-3 * size;
   // Every ray segment lies in the bounds, and so do the hits: there the attributes may
   // skip the singularity probes where the factors prove a hit regular (a hit a rounding
@@ -1175,10 +1181,10 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
   vtkNew<vtkUnsignedCharArray> rgb;
   rgb->SetName("Shading");
   rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(pixels);
+  PiAllocateLarge(rgb.GetPointer(), pixels);
   vtkNew<vtkDoubleArray> depth;
   depth->SetName("Depth");
-  depth->SetNumberOfTuples(pixels);
+  PiAllocateLarge(depth.GetPointer(), pixels);
   unsigned char* colour = rgb->GetPointer(0);
   double* depthOut = depth->GetPointer(0);
   // Background (white, no hit) and the first hits, each on the threads: a first hit is

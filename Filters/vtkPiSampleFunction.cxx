@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSampleFunction.h"
+#include "PiLargeArrays.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
 
@@ -147,7 +148,7 @@ int vtkPiSampleFunction::RequestData(
     output->GetPointData()->SetScalars(values);
     return 1; // an empty piece
   }
-  values->SetNumberOfTuples(vtkIdType(nx) * ny * nz);
+  PiAllocateLarge(values.GetPointer(), vtkIdType(nx) * ny * nz);
   double* out = values->GetPointer(0);
 
   // One x row per work item: the factors restricted to it once, about the middle of the

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PiLargeArrays.h
+ * @brief VTK output arrays in pisurf::AllocateLarge's memory
+ *
+ * Output arrays that a filter fills completely right after allocating them (a sampled
+ * grid, a mesh's points, normals and cells): in huge pages from 512 KiB on, so that
+ * filling them does not fault every 4 KiB page in (see pisurf::AllocateLarge). The
+ * array owns the memory and releases it with free(), as VTK does its own.
+ */
+#ifndef PiLargeArrays_h
+#define PiLargeArrays_h
+
+#include "PiBuffer.h"
+
+#include "vtkType.h"
+
+/// Sizes `array` (a vtkAOSDataArrayTemplate with its components set) to `tuples`
+/// uninitialized tuples. Where the memory cannot be had, VTK's own allocation (and its
+/// error) decides.
+template <typename ArrayT>
+void PiAllocateLarge(ArrayT* array, vtkIdType tuples)
+{
+  using Value = typename ArrayT::ValueType;
+  const vtkIdType values = tuples * array->GetNumberOfComponents();
+  void* data = values > 0 ? pisurf::AllocateLarge(sizeof(Value) * static_cast<size_t>(values))
+                          : nullptr;
+  if (!data)
+  {
+    array->SetNumberOfTuples(tuples);
+    return;
+  }
+  array->SetArray(static_cast<Value*>(data), values, 0, ArrayT::VTK_DATA_ARRAY_FREE);
+}
+
+#endif
