@@ -34,17 +34,20 @@
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <ctime>
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkPiRayCaster);
@@ -450,9 +453,18 @@ struct CastRows
 };
 }
 
+namespace vtkPiRayCasterDetail
+{
+struct HitRows
+{
+  std::vector<std::vector<Hit>> Rows;
+};
+}
+
 using namespace vtkPiRayCasterDetail;
 
 vtkPiRayCaster::vtkPiRayCaster()
+  : Rows(new HitRows)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
@@ -488,6 +500,7 @@ int vtkPiRayCaster::RequestInformation(
 vtkPiRayCaster::~vtkPiRayCaster()
 {
   this->SetPiSurface(nullptr);
+  delete this->Rows;
 }
 
 int vtkPiRayCaster::FillInputPortInformation(int, vtkInformation* info)
@@ -725,7 +738,13 @@ int vtkPiRayCaster::RequestData(
 
   // PASS 1: cast the rays, one image row per work item.
   const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * (rowEnd - rowBegin);
-  std::vector<std::vector<Hit>> rows(rowCount);
+  // (Each row's vector emptied, its memory kept from the last execution.)
+  std::vector<std::vector<Hit>>& rows = this->Rows->Rows;
+  rows.resize(static_cast<size_t>(rowCount));
+  for (std::vector<Hit>& row : rows)
+  {
+    row.clear();
+  }
   std::atomic<bool> abort{ false };
   std::unique_ptr<pisurf::MoleculeField> field;
   std::unique_ptr<pisurf::RayCaster> casterPointer;
@@ -946,23 +965,13 @@ int vtkPiRayCaster::RequestData(
 
   // PASS 2: the hits' attributes from the exact gradient (of every hit the image
   // shows; the points are then this piece's rows).
-  // The rows' hits in one array, each row copied by one thread into its place (a
-  // growing vector copied the whole array at every doubling, on one thread).
+  // Point k is hit k - rowOffsets[r] of row r (read from the rows where they are).
   std::vector<vtkIdType> rowOffsets(rows.size() + 1, 0);
   for (size_t r = 0; r < rows.size(); ++r)
   {
     rowOffsets[r + 1] = rowOffsets[r] + static_cast<vtkIdType>(rows[r].size());
   }
   const vtkIdType n = rowOffsets.back();
-  pisurf::Buffer<Hit> hits;
-  hits.Allocate(static_cast<size_t>(n));
-  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType r = begin; r < end; ++r)
-    {
-      std::copy(rows[r].begin(), rows[r].end(), hits.GetPointer() + rowOffsets[r]);
-      std::vector<Hit>().swap(rows[r]);
-    }
-  });
   // In the one-piece case every hit is a point.
   const bool extraRows = rowBegin != pieceBegin || rowEnd != pieceEnd;
   vtkNew<vtkPoints> points;
@@ -1017,29 +1026,34 @@ int vtkPiRayCaster::RequestData(
   unsigned char* singularOut = singular->GetPointer(0);
   unsigned char* tangentOut = tangent->GetPointer(0);
   int* factorOut = factor->GetPointer(0);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType k = begin; k < end; ++k)
+  // A row at a time (rows differ a lot in their number of hits: small chunks).
+  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType r = begin; r < end; ++r)
     {
-      const Hit& hit = hits[k];
-      double nrm[3], g;
-      int nearest;
-      // Singular: F grows faster than linearly away from the hit.
-      const bool isSingular =
-        caster.Attributes(hit.P, probe, this->SingularTolerance, nrm, g, nearest);
-      singularOut[k] = isSingular ? 1 : 0;
-      for (int c = 0; c < 3; ++c)
+      vtkIdType k = rowOffsets[r];
+      for (const Hit& hit : rows[r])
       {
-        xyz[3 * k + c] = hit.P[c];
-        nrmOut[3 * k + c] = static_cast<float>(nrm[c]);
+        double nrm[3], g;
+        int nearest;
+        // Singular: F grows faster than linearly away from the hit.
+        const bool isSingular =
+          caster.Attributes(hit.P, probe, this->SingularTolerance, nrm, g, nearest);
+        singularOut[k] = isSingular ? 1 : 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          xyz[3 * k + c] = hit.P[c];
+          nrmOut[3 * k + c] = static_cast<float>(nrm[c]);
+        }
+        gradientOut[k] = g;
+        depthOut[k] = hit.T;
+        pixelOut[2 * k] = hit.I;
+        pixelOut[2 * k + 1] = hit.J;
+        viewOut[k] = hit.View;
+        hitOut[k] = hit.Index;
+        tangentOut[k] = hit.Tangent ? 1 : 0;
+        factorOut[k] = nearest;
+        ++k;
       }
-      gradientOut[k] = g;
-      depthOut[k] = hit.T;
-      pixelOut[2 * k] = hit.I;
-      pixelOut[2 * k + 1] = hit.J;
-      viewOut[k] = hit.View;
-      hitOut[k] = hit.Index;
-      tangentOut[k] = hit.Tangent ? 1 : 0;
-      factorOut[k] = nearest;
     }
   });
 
@@ -1066,7 +1080,7 @@ int vtkPiRayCaster::RequestData(
     vtkNew<vtkIdList> keep;
     for (vtkIdType k = 0; k < n; ++k)
     {
-      if (hits[k].J >= pieceBegin && hits[k].J < pieceEnd)
+      if (pixelOut[2 * k + 1] >= pieceBegin && pixelOut[2 * k + 1] < pieceEnd)
       {
         keep->InsertNextId(k);
       }
@@ -1089,24 +1103,36 @@ int vtkPiRayCaster::RequestData(
   pd->SetActiveNormals("Normals");
   const vtkIdType kept = output->GetNumberOfPoints();
   // One vertex cell per point: offsets 0..kept and connectivity 0..kept−1, handed to
-  // the cell array as they are.
+  // the cell array as they are (in its 32-bit storage when the ids fit).
   vtkNew<vtkCellArray> verts;
-  vtkNew<vtkIdTypeArray> vertOffsets, vertIds;
-  vertOffsets->SetNumberOfValues(kept + 1);
-  vertIds->SetNumberOfValues(kept);
-  vtkIdType* offsetOut = vertOffsets->GetPointer(0);
-  vtkIdType* idOut = vertIds->GetPointer(0);
-  vtkSMPTools::For(0, kept + 1, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType k = begin; k < end; ++k)
-    {
-      offsetOut[k] = k;
-      if (k < kept)
+  auto fillVerts = [&](auto* offsets, auto* ids) {
+    PiAllocateLarge(offsets, kept + 1);
+    PiAllocateLarge(ids, kept);
+    auto* offsetOut = offsets->GetPointer(0);
+    auto* idOut = ids->GetPointer(0);
+    using Id = typename std::remove_pointer<decltype(idOut)>::type;
+    vtkSMPTools::For(0, kept + 1, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType k = begin; k < end; ++k)
       {
-        idOut[k] = k;
+        offsetOut[k] = static_cast<Id>(k);
+        if (k < kept)
+        {
+          idOut[k] = static_cast<Id>(k);
+        }
       }
-    }
-  });
-  verts->SetData(vertOffsets, vertIds);
+    });
+    verts->SetData(offsets, ids);
+  };
+  if (kept < std::numeric_limits<std::int32_t>::max())
+  {
+    vtkNew<vtkTypeInt32Array> offsets, ids;
+    fillVerts(offsets.GetPointer(), ids.GetPointer());
+  }
+  else
+  {
+    vtkNew<vtkIdTypeArray> offsets, ids;
+    fillVerts(offsets.GetPointer(), ids.GetPointer());
+  }
   output->SetVerts(verts);
 
   vtkNew<vtkDoubleArray> viewData;
@@ -1140,7 +1166,8 @@ int vtkPiRayCaster::RequestData(
   lap("output");
   if (image)
   {
-    this->Shade(views, rowBegin, rowEnd, hits.GetPointer(), n, normals, singular, image);
+    this->Shade(
+      views, rowBegin, rowEnd, n, depthOut, pixelOut, viewOut, hitOut, normals, singular, image);
     if (rowBegin != pieceBegin || rowEnd != pieceEnd)
     {
       // Rows beyond the piece (ghost rows asked by the image's consumer, or another
@@ -1168,7 +1195,8 @@ int vtkPiRayCaster::RequestData(
 }
 
 void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int rowEnd,
-  const Hit* hits, vtkIdType hitCount, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
+  vtkIdType hitCount, const double* hitDepth, const int* pixel, const int* viewIndex,
+  const int* hitIndex, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
   vtkImageData* image)
 {
   const int w = this->Resolution[0], h = rowEnd - rowBegin;
@@ -1198,14 +1226,14 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
   vtkSMPTools::For(0, hitCount, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType k = begin; k < end; ++k)
     {
-      const Hit& hit = hits[k];
-      if (hit.Index != 0)
+      if (hitIndex[k] != 0)
       {
         continue;
       }
-      const View& v = views[hit.View];
-      const vtkIdType id = (vtkIdType(hit.View) * h + hit.J - rowBegin) * w + hit.I;
-      depthOut[id] = hit.T;
+      const int i = pixel[2 * k], j = pixel[2 * k + 1];
+      const View& v = views[viewIndex[k]];
+      const vtkIdType id = (vtkIdType(viewIndex[k]) * h + j - rowBegin) * w + i;
+      depthOut[id] = hitDepth[k];
       unsigned char* rgbOut = colour + 3 * id;
       if (isSingular[k])
       {
@@ -1218,7 +1246,7 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
       double d[3];
       for (int c = 0; c < 3; ++c)
       {
-        d[c] = v.Perspective ? v.D[c] + hit.I * v.U[c] + hit.J * v.V[c] : v.D[c];
+        d[c] = v.Perspective ? v.D[c] + i * v.U[c] + j * v.V[c] : v.D[c];
       }
       vtkMath::Normalize(d);
       const float* nf = nrm + 3 * k;

@@ -121,6 +121,7 @@ namespace vtkPiRayCasterDetail
 {
 struct View;
 struct Hit;
+struct HitRows;
 }
 #endif
 
@@ -239,10 +240,15 @@ protected:
 
 private:
 #ifndef __VTK_WRAP__
-  // Output port 1: the shaded first hits and their depth, one slice per view.
+  // Output port 1: the shaded first hits and their depth, one slice per view, from the
+  // point arrays of the hits (all of them, also those of rows beyond the piece).
   void Shade(const std::vector<vtkPiRayCasterDetail::View>& views, int rowBegin, int rowEnd,
-    const vtkPiRayCasterDetail::Hit* hits, vtkIdType hitCount, vtkFloatArray* normals,
-    vtkUnsignedCharArray* singular, vtkImageData* image);
+    vtkIdType hitCount, const double* depth, const int* pixel, const int* viewIndex,
+    const int* hitIndex, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
+    vtkImageData* image);
+  // Per image row: its hits, kept (emptied, not freed) from one execution to the next,
+  // so that casting again does not fault that memory in again.
+  vtkPiRayCasterDetail::HitRows* Rows;
 #endif
   vtkPiRayCaster(const vtkPiRayCaster&) = delete;
   void operator=(const vtkPiRayCaster&) = delete;
