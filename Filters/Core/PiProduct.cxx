@@ -1030,7 +1030,7 @@ ProductKernel::ProbeBounds ProductKernel::PrepareProbes(const double box[6], dou
 
 bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds,
   double tolerance, double normal[3], double& gradientNorm, int& nearest,
-  double& logGradientNorm) const
+  double* logGradientNorm) const
 {
   const size_t count = this->Factors.size();
   if (!this->AllPolynomial || count == 0 || count > MaxPlainVertex ||
@@ -1091,7 +1091,7 @@ bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds
   const double F = product - this->Blending;
   const double U = (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) *
     (1.0 + 1e-10);
-  this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, &logGradientNorm);
+  this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, logGradientNorm);
   return std::isfinite(U) && std::isnormal(gradientNorm) && gradientNorm * h > tolerance * U;
 }
 

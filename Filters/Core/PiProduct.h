@@ -121,9 +121,10 @@ public:
   /// skipped. False when it cannot tell (the outputs are then not to be used): p outside
   /// the bounds' box, products
   /// of more than 32 factors or outside the plain double range, non-polynomial factors,
-  /// and points near a vanishing gradient.
+  /// and points near a vanishing gradient. ln|∇F| only if asked (a logarithm per point).
   bool EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds, double tolerance,
-    double normal[3], double& gradientNorm, int& nearest, double& logGradientNorm) const;
+    double normal[3], double& gradientNorm, int& nearest,
+    double* logGradientNorm = nullptr) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.

@@ -257,8 +257,7 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
   double logGradient, mantissa[6];
   long exponent[6];
   if (probe == this->Probes.Probe && probe > 0 &&
-    this->Kernel->EvaluateVertexIfRegular(
-      p, this->Probes, tolerance, normal, gradientNorm, nearest, logGradient))
+    this->Kernel->EvaluateVertexIfRegular(p, this->Probes, tolerance, normal, gradientNorm, nearest))
   {
     return false;
   }

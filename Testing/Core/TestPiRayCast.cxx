@@ -139,12 +139,13 @@ TEST(RayCast, SkippedProbesNeverContradictTheProbes)
       double n[3], g, logG;
       int nearest;
       // Just above the ratio: the probes say singular.
-      const bool above = k.EvaluateVertexIfRegular(p, bounds, ratio * (1 + 1e-9), n, g, nearest, logG);
+      const bool above =
+        k.EvaluateVertexIfRegular(p, bounds, ratio * (1 + 1e-9), n, g, nearest, &logG);
       EXPECT_FALSE(above) << model.Name << " at (" << p[0] << ", " << p[1] << ", " << p[2]
                           << "): regular claimed where the probes' ratio is " << ratio;
-      // The ray caster's own tolerance.
+      // The ray caster's own tolerance (and its call, without the logarithm).
       const bool onSurface = s % 2 == 1;
-      if (k.EvaluateVertexIfRegular(p, bounds, 0.1, n, g, nearest, logG))
+      if (k.EvaluateVertexIfRegular(p, bounds, 0.1, n, g, nearest))
       {
         certified += onSurface ? 1 : 0;
         EXPECT_GT(ratio, 0.1) << model.Name;
