@@ -832,10 +832,33 @@ void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], dou
   }
   if (!plain)
   {
-    // The general path's product (ScaledProduct), on the values already computed.
-    for (size_t k = 0; k < count; ++k)
+    // ScaledProduct rescales only a factor or a partial product whose largest magnitude
+    // (of value and gradient) is finite, non-zero and outside [Small, Big]; where none
+    // is, its operations are exactly these plain ones (most points the a-priori test
+    // refused: one factor tiny near its own sphere, the others large).
+    auto keeps = [](double v, const double w[3]) {
+      const double a = std::max({ std::fabs(v), std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
+      return (a >= Small && a <= Big) || a == 0.0 || !std::isfinite(a);
+    };
+    bool unscaled = true;
+    for (size_t k = 0; k < count && unscaled; ++k)
     {
-      s.Multiply(f[k], g[k]);
+      unscaled = keeps(f[k], g[k]);
+      for (int c = 0; c < 3; ++c)
+      {
+        s.G[c] = s.G[c] * f[k] + s.P * g[k][c];
+      }
+      s.P *= f[k];
+      unscaled = unscaled && keeps(s.P, s.G);
+    }
+    if (!unscaled)
+    {
+      // The general path's product (ScaledProduct), on the values already computed.
+      s = ScaledProduct();
+      for (size_t k = 0; k < count; ++k)
+      {
+        s.Multiply(f[k], g[k]);
+      }
     }
     FinishVertex(s, normal, gradientNorm, logGradientNorm);
     return;
