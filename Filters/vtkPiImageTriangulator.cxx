@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
 #include "PiBuffer.h"
+#include "PiLargeArrays.h"
 #include "PiEdgeFlips.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
@@ -1910,20 +1911,25 @@ int vtkPiImageTriangulator::RequestData(
   // the exact gradient.
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
+  {
+    vtkNew<vtkDoubleArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    PiAllocateLarge(coordinates.GetPointer(), n);
+    points->SetData(coordinates);
+  }
   vtkNew<vtkFloatArray> outNormals;
   outNormals->SetName("Normals");
   outNormals->SetNumberOfComponents(3);
-  outNormals->SetNumberOfTuples(n);
+  PiAllocateLarge(outNormals.GetPointer(), n);
   vtkNew<vtkUnsignedCharArray> outSingular;
   outSingular->SetName("Singular");
-  outSingular->SetNumberOfTuples(n);
+  PiAllocateLarge(outSingular.GetPointer(), n);
   vtkNew<vtkIntArray> outView;
   outView->SetName("ViewIndex");
-  outView->SetNumberOfTuples(n);
+  PiAllocateLarge(outView.GetPointer(), n);
   vtkNew<vtkIntArray> outFactor;
   outFactor->SetName("Factor");
-  outFactor->SetNumberOfTuples(n);
+  PiAllocateLarge(outFactor.GetPointer(), n);
   auto* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
   float* nrmOut = outNormals->GetPointer(0);
   // In input order (read in sequence, written where each point goes: scattered writes
@@ -2029,8 +2035,8 @@ int vtkPiImageTriangulator::RequestData(
   PiEdgeFlipResult flipped;
   auto compact = [&](auto* offsets, auto* cells) {
     using Id = std::remove_pointer_t<decltype(cells->GetPointer(0))>;
-    cells->SetNumberOfTuples(3 * kept);
-    offsets->SetNumberOfTuples(kept + 1);
+    PiAllocateLarge(cells, 3 * kept);
+    PiAllocateLarge(offsets, kept + 1);
     Id* cellIds = cells->GetPointer(0);
     Id* offsetIds = offsets->GetPointer(0);
     vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiMoleculeSurface.h"
 #include "PiInnerAlgorithm.h"
+#include "PiLargeArrays.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 
@@ -525,12 +526,17 @@ int vtkPiMoleculeSurface::RequestData(
   vtkIntArray* factor = vtkIntArray::SafeDownCast(output->GetPointData()->GetArray("Factor"));
   vtkNew<vtkIntArray> atomicNumber;
   atomicNumber->SetName("AtomicNumber");
-  atomicNumber->SetNumberOfTuples(output->GetNumberOfPoints());
-  for (vtkIdType v = 0; v < output->GetNumberOfPoints(); ++v)
-  {
-    const int atom = factor ? factor->GetValue(v) : -1;
-    atomicNumber->SetValue(v, atom >= 0 && atom < count ? numbers[atom] : 0);
-  }
+  const vtkIdType points = output->GetNumberOfPoints();
+  PiAllocateLarge(atomicNumber.GetPointer(), points);
+  int* numberOut = atomicNumber->GetPointer(0);
+  const int* atomOf = factor ? factor->GetPointer(0) : nullptr;
+  vtkSMPTools::For(0, points, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType v = begin; v < end; ++v)
+    {
+      const int atom = atomOf ? atomOf[v] : -1;
+      numberOut[v] = atom >= 0 && atom < count ? numbers[atom] : 0;
+    }
+  });
   output->GetPointData()->AddArray(atomicNumber);
 
   vtkFieldData* fd = output->GetFieldData();

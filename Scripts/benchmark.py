@@ -3,7 +3,7 @@
     pvpython benchmark.py MODELS_DIR [N]      (./run bench; N = grid points per axis, 256)
 
 For each model and each vtkSMPTools backend (Sequential, STDThread), measured side by
-side in one run (best of 3):
+side in one run (best of 5: on a shared 2-core machine single runs vary by half):
   grid eval   vtkSampleFunction over vtkImplicitSum of the same factors (VTK's own way
               to compose functions: a virtual call per point per factor; a sum, but the
               same cost as a hand-written product), vtkSampleFunction over vtkPiSurface
@@ -28,7 +28,7 @@ from vtkmodules.vtkCommonDataModel import vtkImplicitSum
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 
 
-def best_of(f, n=3):
+def best_of(f, n=5):
     best = float("inf")
     for _ in range(n):
         t = time.perf_counter()
