@@ -331,7 +331,23 @@ const OctantSignTable OctantSignsTable;
 const V4 (&OctantSigns)[8][2] = OctantSignsTable.Signs;
 }
 
-bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Interval* octants) const
+namespace
+{
+// EvaluateTaylor's expansion centre c and half-widths h of a box (c ± h covers the box
+// despite the rounding of c and h), and |c| + h.
+void TaylorFrame(const double box[6], double c[3], double h[3], double reach[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = 0.5 * (box[2 * a] + box[2 * a + 1]);
+    h[a] = std::max(box[2 * a + 1] - c[a], c[a] - box[2 * a]) * (1.0 + 4.0 * DBL_EPSILON);
+    reach[a] = std::fabs(c[a]) + h[a];
+  }
+}
+}
+
+bool PolynomialFactor::EvaluateTaylor(
+  const double box[6], Interval& whole, Interval* octants, bool natural) const
 {
   if (!this->HasWorld)
   {
@@ -340,13 +356,7 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
   constexpr int M = TaylorMaxDegree + 1;
   double b[M * M * M];
   double c[3], h[3], reach[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    c[a] = 0.5 * (box[2 * a] + box[2 * a + 1]);
-    // c ± h covers the box despite the rounding of c and h.
-    h[a] = std::max(box[2 * a + 1] - c[a], c[a] - box[2 * a]) * (1.0 + 4.0 * DBL_EPSILON);
-    reach[a] = std::fabs(c[a]) + h[a];
-  }
+  TaylorFrame(box, c, h, reach);
   int n;
   if (this->Diagonal && this->Poly.IsEvenQuartic())
   {
@@ -516,30 +526,39 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
       octants[o] = widen(olo[o], ohi[o]);
     }
   }
-  if (this->Natural && n > 2)
+  if (natural && this->Natural && n > 2)
   {
-    // Above degree 2 the expression as written can be tighter (the table top's
-    // (8z+5)^6, whose terms the expansion bounds one by one): intersect with it, and on
-    // the octants too where it was tighter on the whole box.
-    Interval local[3];
-    this->LocalBox(box, local);
-    const Interval natural = this->NaturalInterval(local, magnitude);
-    if (natural.Hi - natural.Lo < whole.Hi - whole.Lo)
-    {
-      whole.Lo = std::max(whole.Lo, natural.Lo);
-      whole.Hi = std::min(whole.Hi, natural.Hi);
-      for (int o = 0; octants && o < 8; ++o)
-      {
-        double sub[6];
-        OctantBox(box, o, sub);
-        this->LocalBox(sub, local);
-        const Interval part = this->NaturalInterval(local, magnitude);
-        octants[o].Lo = std::max(octants[o].Lo, part.Lo);
-        octants[o].Hi = std::min(octants[o].Hi, part.Hi);
-      }
-    }
+    this->IntersectNatural(box, whole, octants);
   }
   return true;
+}
+
+void PolynomialFactor::IntersectNatural(const double box[6], Interval& whole, Interval* octants) const
+{
+  // Above degree 2 the expression as written can be tighter (the table top's
+  // (8z+5)^6, whose terms the expansion bounds one by one): intersect with it, and on
+  // the octants too where it was tighter on the whole box. (The magnitude is
+  // EvaluateTaylor's, from the same box.)
+  double c[3], h[3], reach[3];
+  TaylorFrame(box, c, h, reach);
+  const double magnitude = this->WorldMagnitude.Evaluate(reach) * (1.0 + 1e-12);
+  Interval local[3];
+  this->LocalBox(box, local);
+  const Interval natural = this->NaturalInterval(local, magnitude);
+  if (natural.Hi - natural.Lo < whole.Hi - whole.Lo)
+  {
+    whole.Lo = std::max(whole.Lo, natural.Lo);
+    whole.Hi = std::min(whole.Hi, natural.Hi);
+    for (int o = 0; octants && o < 8; ++o)
+    {
+      double sub[6];
+      OctantBox(box, o, sub);
+      this->LocalBox(sub, local);
+      const Interval part = this->NaturalInterval(local, magnitude);
+      octants[o].Lo = std::max(octants[o].Lo, part.Lo);
+      octants[o].Hi = std::min(octants[o].Hi, part.Hi);
+    }
+  }
 }
 
 std::vector<double> PolynomialFactor::RestrictToLine(const double o[3], const double d[3]) const

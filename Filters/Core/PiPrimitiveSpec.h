@@ -180,8 +180,19 @@ struct PolynomialFactor
   /// EvaluateInterval by the rounding of our evaluations and of the expansions, bounded
   /// by the magnitude WorldMagnitude(|c| + h). False (nothing written) when
   /// PrepareIntervals() did not fill World. Cost: O(degree⁴) for the expansion, then
-  /// O(terms) per octant.
-  bool EvaluateTaylor(const double box[6], Interval& whole, Interval* octants) const;
+  /// O(terms) per octant. Above degree 2 the enclosures are intersected with the
+  /// expression as written (IntersectNatural) unless `natural` is false: then they are
+  /// the Taylor form's alone (wider or equal), for callers that intersect only where
+  /// the Taylor form cannot decide.
+  bool EvaluateTaylor(
+    const double box[6], Interval& whole, Interval* octants, bool natural = true) const;
+  /// Whether IntersectNatural can tighten EvaluateTaylor's enclosures (an expression as
+  /// written and a degree above 2).
+  bool HasNaturalForm() const { return this->Natural && this->Poly.GetDegree() > 2; }
+  /// EvaluateTaylor's last step on its natural = false enclosures of the same box: the
+  /// enclosure of the expression as written over the box, intersected with `whole` if
+  /// narrower than it, and then also each octant's with the octant's own.
+  void IntersectNatural(const double box[6], Interval& whole, Interval* octants) const;
   /// The local box (an enclosure of the affine image) of a world box.
   void LocalBox(const double box[6], Interval local[3]) const;
   /// The enclosure of Natural (which must be set) over a local box, scaled and widened

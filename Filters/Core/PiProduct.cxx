@@ -1429,21 +1429,47 @@ int ProductKernel::ClassifyBox(const double box[6]) const
   // On the stack for the usual few factors (a thread_local vector costs a TLS lookup
   // per call in a shared library).
   constexpr size_t Small = 32;
-  Interval local[Small];
+  Interval local[Small] = {}; // (every element is written below; this quiets GCC)
+  char expandedLocal[Small];
   const size_t n = this->Factors.size();
   Interval* enclosures = local;
+  char* expanded = expandedLocal;
   if (n > Small)
   {
     thread_local std::vector<Interval> large;
+    thread_local std::vector<char> expandedLarge;
     large.resize(n);
+    expandedLarge.resize(n);
     enclosures = large.data();
+    expanded = expandedLarge.data();
+  }
+  // The Taylor forms alone first; only where they cannot decide, intersected with the
+  // expressions as written (narrower enclosures can only confirm a decided sign).
+  bool natural = false;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const PolynomialFactor& f = this->Factors[i].Polynomial;
+    expanded[i] = f.EvaluateTaylor(box, enclosures[i], nullptr, false);
+    if (!expanded[i])
+    {
+      enclosures[i] = f.EvaluateInterval(box);
+    }
+    else
+    {
+      natural = natural || f.HasNaturalForm();
+    }
+  }
+  const int sign = SignOfProductMinus(enclosures, n, this->Blending);
+  if (sign != 0 || !natural)
+  {
+    return sign;
   }
   for (size_t i = 0; i < n; ++i)
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
-    if (!f.EvaluateTaylor(box, enclosures[i], nullptr))
+    if (expanded[i] && f.HasNaturalForm())
     {
-      enclosures[i] = f.EvaluateInterval(box);
+      f.IntersectNatural(box, enclosures[i], nullptr);
     }
   }
   return SignOfProductMinus(enclosures, n, this->Blending);
@@ -1458,7 +1484,7 @@ int ProductKernel::ClassifyBoxAndOctants(
   }
   const size_t n = this->Factors.size();
   constexpr size_t Small = 16;
-  Interval wholeLocal[Small], partsLocal[8 * Small];
+  Interval wholeLocal[Small] = {}, partsLocal[8 * Small]; // (see ClassifyBox)
   char expandedLocal[Small];
   Interval* whole = wholeLocal;
   Interval* parts = partsLocal;
@@ -1474,13 +1500,17 @@ int ProductKernel::ClassifyBoxAndOctants(
     parts = partsLarge.data();
     expanded = expandedLarge.data();
   }
+  // The Taylor forms alone first; the expressions as written only where they cannot
+  // decide the box (as in ClassifyBox).
+  bool natural = false;
   for (size_t i = 0; i < n; ++i)
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
     Interval octant[8];
-    expanded[i] = f.EvaluateTaylor(box, whole[i], octant);
+    expanded[i] = f.EvaluateTaylor(box, whole[i], octant, false);
     if (expanded[i])
     {
+      natural = natural || f.HasNaturalForm();
       for (int o = 0; o < 8; ++o)
       {
         parts[o * n + i] = octant[o];
@@ -1491,7 +1521,28 @@ int ProductKernel::ClassifyBoxAndOctants(
       whole[i] = f.EvaluateInterval(box);
     }
   }
-  const int sign = SignOfProductMinus(whole, n, this->Blending);
+  int sign = SignOfProductMinus(whole, n, this->Blending);
+  if (sign == 0 && natural)
+  {
+    for (size_t i = 0; i < n; ++i)
+    {
+      const PolynomialFactor& f = this->Factors[i].Polynomial;
+      if (expanded[i] && f.HasNaturalForm())
+      {
+        Interval octant[8];
+        for (int o = 0; o < 8; ++o)
+        {
+          octant[o] = parts[o * n + i];
+        }
+        f.IntersectNatural(box, whole[i], octant);
+        for (int o = 0; o < 8; ++o)
+        {
+          parts[o * n + i] = octant[o];
+        }
+      }
+    }
+    sign = SignOfProductMinus(whole, n, this->Blending);
+  }
   if (sign != 0)
   {
     return sign;

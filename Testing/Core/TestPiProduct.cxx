@@ -1398,6 +1398,54 @@ TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
   EXPECT_EQ(expanded, 200 * (static_cast<int>(fs.size()) - 1));
 }
 
+// The classifiers take the Taylor forms alone first and intersect them with the
+// expressions as written only where those cannot decide: EvaluateTaylor without the
+// natural form, then IntersectNatural, must give EvaluateTaylor's own bits, and the
+// Taylor form alone must contain them.
+TEST(ProductKernel, NaturalIntersectionAfterwardsIsTheSame)
+{
+  std::vector<Factor> fs = EnclosureFactors();
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int natural = 0;
+  for (Factor& factor : fs)
+  {
+    PolynomialFactor& f = factor.Polynomial;
+    f.PrepareIntervals();
+    natural += f.HasNaturalForm() ? 1 : 0;
+    for (int n = 0; n < 100; ++n)
+    {
+      const double size = std::pow(10.0, -3.0 + 4.0 * u(rng));
+      double box[6];
+      for (int a = 0; a < 3; ++a)
+      {
+        box[2 * a] = 3.0 * (2.0 * u(rng) - 1.0);
+        box[2 * a + 1] = box[2 * a] + size * (0.2 + u(rng));
+      }
+      Interval whole, octants[8], lazy, lazyOctants[8];
+      if (!f.EvaluateTaylor(box, whole, octants))
+      {
+        continue;
+      }
+      ASSERT_TRUE(f.EvaluateTaylor(box, lazy, lazyOctants, false));
+      EXPECT_LE(lazy.Lo, whole.Lo);
+      EXPECT_GE(lazy.Hi, whole.Hi);
+      if (f.HasNaturalForm())
+      {
+        f.IntersectNatural(box, lazy, lazyOctants);
+      }
+      EXPECT_EQ(lazy.Lo, whole.Lo);
+      EXPECT_EQ(lazy.Hi, whole.Hi);
+      for (int o = 0; o < 8; ++o)
+      {
+        EXPECT_EQ(lazyOctants[o].Lo, octants[o].Lo) << "octant " << o;
+        EXPECT_EQ(lazyOctants[o].Hi, octants[o].Hi) << "octant " << o;
+      }
+    }
+  }
+  EXPECT_GT(natural, 0); // the test reaches IntersectNatural
+}
+
 // The product's classification of a box and its octants never contradicts the signs of
 // F in them, and it decides what the paper's cup needs decided: on the 32³ boxes of its
 // bounds (the mesher's blocks at 256³), the Taylor form decides 26 700 (the monomial,
