@@ -97,7 +97,9 @@ std::vector<double> FactorKey(const pisurf::PolynomialFactor& f)
 
 struct vtkPiFlyingEdges::vtkInternals
 {
-  std::vector<double> Values;
+  // The active blocks' values, grown (never shrunk) as executions need: uninitialized
+  // (the sample pass writes every value) and in huge pages (pisurf::AllocateLarge).
+  pisurf::Buffer<double> Values;
   // The rows the active blocks need and their factors' restrictions (kept between
   // executions, like Values, so that a re-execution does not fault their pages in again).
   std::vector<vtkIdType> RowIndex, Rows;
@@ -2251,8 +2253,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
 
   // PASS 3: evaluate the points of the active blocks.
   // Every entry is written below: no need to clear.
-  this->Internals->Values.resize(g.Active.size() * BlockPoints * BlockPoints * BlockPoints);
-  g.Values = this->Internals->Values.data();
+  const size_t valueCount = g.Active.size() * BlockPoints * BlockPoints * BlockPoints;
+  if (this->Internals->Values.GetSize() < valueCount)
+  {
+    this->Internals->Values.Allocate(valueCount);
+  }
+  g.Values = this->Internals->Values.GetPointer();
   std::atomic<bool> abort{ false };
   if (kernel && kernel->IsPolynomial())
   {
