@@ -1057,6 +1057,17 @@ int vtkPiRayCaster::RequestData(
     }
   });
 
+  // Kept for the next execution up to 256 MiB of hits (4 M hits: six 1024² views of
+  // first hits, or a few all-hit ones); more is released rather than held.
+  size_t keptBytes = 0;
+  for (const std::vector<Hit>& row : rows)
+  {
+    keptBytes += row.capacity() * sizeof(Hit);
+  }
+  if (keptBytes > (size_t(256) << 20))
+  {
+    std::vector<std::vector<Hit>>().swap(rows);
+  }
   lap("attributes");
   if (this->CheckAbort())
   {

@@ -247,7 +247,8 @@ private:
     const int* hitIndex, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
     vtkImageData* image);
   // Per image row: its hits, kept (emptied, not freed) from one execution to the next,
-  // so that casting again does not fault that memory in again.
+  // so that casting again does not fault that memory in again (up to 256 MiB of them;
+  // a larger cast releases them).
   vtkPiRayCasterDetail::HitRows* Rows;
 #endif
   vtkPiRayCaster(const vtkPiRayCaster&) = delete;
