@@ -13,7 +13,6 @@
 #define PiBuffer_h
 
 #include <cstddef>
-#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <new>

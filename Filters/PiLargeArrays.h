@@ -13,6 +13,9 @@
 
 #include "PiBuffer.h"
 
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
 #include "vtkType.h"
 
 /// Sizes `array` (a vtkAOSDataArrayTemplate with its components set) to `tuples`
@@ -31,6 +34,15 @@ void PiAllocateLarge(ArrayT* array, vtkIdType tuples)
     return;
   }
   array->SetArray(static_cast<Value*>(data), values, 0, ArrayT::VTK_DATA_ARRAY_FREE);
+}
+
+/// Gives `points` `count` uninitialized double-precision points in that memory.
+inline void PiAllocateLargePoints(vtkPoints* points, vtkIdType count)
+{
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  PiAllocateLarge(coordinates.GetPointer(), count);
+  points->SetData(coordinates);
 }
 
 #endif

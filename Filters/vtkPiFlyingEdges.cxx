@@ -2439,13 +2439,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
 
   // PASS 7: vertices.
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  {
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    PiAllocateLarge(xyz.GetPointer(), vertices);
-    points->SetData(xyz);
-  }
+  PiAllocateLargePoints(points, vertices);
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);

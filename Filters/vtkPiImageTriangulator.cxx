@@ -1910,13 +1910,7 @@ int vtkPiImageTriangulator::RequestData(
   // The vertices: input hits copy their attributes, computed points take them from
   // the exact gradient.
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  {
-    vtkNew<vtkDoubleArray> coordinates;
-    coordinates->SetNumberOfComponents(3);
-    PiAllocateLarge(coordinates.GetPointer(), n);
-    points->SetData(coordinates);
-  }
+  PiAllocateLargePoints(points, n);
   vtkNew<vtkFloatArray> outNormals;
   outNormals->SetName("Normals");
   outNormals->SetNumberOfComponents(3);

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
-#include "PiBuffer.h"
 #include "PiLargeArrays.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
@@ -975,13 +974,7 @@ int vtkPiRayCaster::RequestData(
   // In the one-piece case every hit is a point.
   const bool extraRows = rowBegin != pieceBegin || rowEnd != pieceEnd;
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  {
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    PiAllocateLarge(xyz.GetPointer(), n);
-    points->SetData(xyz);
-  }
+  PiAllocateLargePoints(points, n);
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);

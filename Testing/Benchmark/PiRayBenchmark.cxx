@@ -3,8 +3,9 @@
 // marcher with bisection given the same time budget, on 1024² rays of the −Y view.
 // Prints a Markdown table (each time the best of three executions): rays per second (from
 // wall-clock time, and for the Sequential backend also from the process CPU time, which
-// other processes on a shared machine disturb less), the all-hits time over the first-hit time, and the hits the marcher
-// misses. PIRAY_BENCH_QUICK=1 skips the marcher and the spheres (for profiling).
+// other processes on a shared machine disturb less), the all-hits time over the first-hit
+// time, and the hits the marcher misses. PIRAY_BENCH_QUICK=1 skips the marcher and the
+// spheres (for profiling).
 #include "PiProduct.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiRayCaster.h"
