@@ -35,7 +35,7 @@
  *   +X, +Y); THREE_AXIS_DIRECTIONS: −Z, −X, −Y with all hits.
  *
  * Empty-space skipping (axis views and perspective cameras, polynomial factors,
- * SkipEmptySpace on): the rays of 32 × 32 pixel tiles are cut into boxes as deep as
+ * SkipEmptySpace on): the rays of 128 × 128 pixel tiles are cut into boxes as deep as
  * wide, and undecided boxes into eight children (pixel halves, depth halves) down to
  * 8 × 8 pixels, each classified by the kernel's rigorous enclosure of F over the box
  * holding its rays (ProductKernel::ClassifyBox; an axis view's children are its box's

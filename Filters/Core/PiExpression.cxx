@@ -393,6 +393,32 @@ double PowerUp(double x, int n)
 }
 }
 
+namespace
+{
+void CountVariables(const ExpressionNode& n, int counts[3])
+{
+  if (n.Type == ExpressionNode::Variable)
+  {
+    ++counts[n.Axis];
+  }
+  if (n.A)
+  {
+    CountVariables(*n.A, counts);
+  }
+  if (n.B)
+  {
+    CountVariables(*n.B, counts);
+  }
+}
+}
+
+bool IsSingleUse(const ExpressionNode& node)
+{
+  int counts[3] = { 0, 0, 0 };
+  CountVariables(node, counts);
+  return counts[0] <= 1 && counts[1] <= 1 && counts[2] <= 1;
+}
+
 Interval EvaluateInterval(const ExpressionNode& n, const Interval box[3])
 {
   // Outward-rounded: an enclosure of the exact real value of the expression as written.

@@ -49,6 +49,13 @@ struct ExpressionNode
 /// An enclosure of the expression over the box (x, y, z) ∈ box[0..2].
 Interval EvaluateInterval(const ExpressionNode& node, const Interval box[3]);
 
+/// True when each of x, y and z occurs at most once in the expression (a single-use
+/// expression, as 0.1x^6 + 0.1y^6 + (8z + 5)^6 − 1): its interval evaluation then gives
+/// the exact range over a box, up to rounding. Where a variable occurs twice, as in a
+/// torus (x² + y² + z² + R² − r²)² − 4R²(x² + y²), each occurrence ranges independently
+/// and the enclosure can be far wider than the range.
+bool IsSingleUse(const ExpressionNode& node);
+
 /// Parses `text` into `result` (and, if `tree` is given, the expression as written).
 /// Returns false and sets `error` (result untouched) on any syntax error, unknown name,
 /// non-constant or negative/fractional exponent, division by a non-constant or by zero,

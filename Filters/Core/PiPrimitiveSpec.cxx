@@ -526,7 +526,7 @@ bool PolynomialFactor::EvaluateTaylor(
       octants[o] = widen(olo[o], ohi[o]);
     }
   }
-  if (natural && this->Natural && n > 2)
+  if (natural && this->HasNaturalForm())
   {
     this->IntersectNatural(box, whole, octants);
   }
@@ -826,6 +826,7 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
   factor = PolynomialFactor();
   factor.Poly = p;
   factor.Natural = natural;
+  factor.NaturalSingleUse = natural && IsSingleUse(*natural);
   factor.NaturalScale = s.Negate ? -s.Scale : s.Scale;
   std::copy(&R[0][0], &R[0][0] + 9, &factor.A[0][0]);
   for (int i = 0; i < 3; ++i)

@@ -252,3 +252,27 @@ TEST(Expression, ParameterNames)
     EXPECT_FALSE(pisurf::IsValidParameterName(bad)) << bad;
   }
 }
+
+// The classifiers intersect with an expression as written only where each variable
+// occurs once (its interval evaluation is then the exact range): the table's top, not
+// the cup's tori.
+TEST(Expression, SingleUse)
+{
+  const struct
+  {
+    const char* Text;
+    bool SingleUse;
+  } cases[] = { { "0.1*x^6+0.1*y^6+(8*z+5)^6-1", true }, { "x*y*z-1", true },
+    { "((x-1)/0.1)^2+((y+1)/0.1)^2+(z/0.9)^2-0.5", true }, { "x*x", false },
+    { "((z+1)^2+10*x^2+10*y^2+19)^2-800*(x^2+y^2)", false }, { "(x+y)^2-y", false },
+    { "3", true } };
+  for (const auto& c : cases)
+  {
+    pisurf::Polynomial3 p;
+    std::string error;
+    std::shared_ptr<const pisurf::ExpressionNode> tree;
+    ASSERT_TRUE(ParseExpression(c.Text, {}, p, error, &tree)) << c.Text << ": " << error;
+    ASSERT_TRUE(tree);
+    EXPECT_EQ(pisurf::IsSingleUse(*tree), c.SingleUse) << c.Text;
+  }
+}
