@@ -154,6 +154,70 @@ struct TileOctree
   // The tile's undecided leaves as (column in the tile, range), in visiting order.
   std::vector<std::pair<int, DepthRange>> Leaves;
   int TileI = 0, TileJ = 0;
+  // First hits only: per leaf column of the tile, the sign of F on the first (nearest)
+  // decided box met (0: none yet) and the depth where a decided box of the other sign
+  // begins (+inf: none yet). Every ray of the column changes sign between those two
+  // boxes, so its first root lies before that depth, in an undecided range in between:
+  // nothing beyond it is classified or searched. The visit is front to back (the front
+  // half of every node before its back half), so the first decided box met in a column
+  // is its nearest. Axis views only: their boxes lie within the bounds, where the rays
+  // search.
+  bool FirstHit = false;
+  signed char FirstSign[(TileSize / LeafSize) * (TileSize / LeafSize)];
+  double Cut[(TileSize / LeafSize) * (TileSize / LeafSize)];
+
+  void ResetCuts()
+  {
+    std::fill(std::begin(this->FirstSign), std::end(this->FirstSign), 0);
+    std::fill(std::begin(this->Cut), std::end(this->Cut), std::numeric_limits<double>::infinity());
+  }
+
+  // Calls visit(c) for each leaf column c of the tile that the node's pixels cover.
+  template <class Visit>
+  bool AllColumns(int i0, int j0, int size, Visit&& visit) const
+  {
+    const int per = TileSize / LeafSize;
+    const int ci0 = (i0 - this->TileI) / LeafSize, cj0 = (j0 - this->TileJ) / LeafSize;
+    const int n = std::max(1, size / LeafSize);
+    for (int cj = cj0; cj < cj0 + n; ++cj)
+    {
+      for (int ci = ci0; ci < ci0 + n; ++ci)
+      {
+        if (!visit(cj * per + ci))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  // A box decided with `sign` over the node's rays at depths [ta, tb].
+  void Decided(int i0, int j0, int size, double ta, int sign)
+  {
+    if (!this->FirstHit)
+    {
+      return;
+    }
+    this->AllColumns(i0, j0, size, [&](int c) {
+      if (this->FirstSign[c] == 0)
+      {
+        this->FirstSign[c] = static_cast<signed char>(sign);
+      }
+      else if (this->FirstSign[c] != sign && ta < this->Cut[c])
+      {
+        this->Cut[c] = ta;
+      }
+      return true;
+    });
+  }
+
+  // True when every ray of the node has its first root before depth ta.
+  bool BeyondCut(int i0, int j0, int size, double ta) const
+  {
+    return this->FirstHit &&
+      this->AllColumns(i0, j0, size, [&](int c) { return this->Cut[c] <= ta; });
+  }
 
   // The point of pixel (i, j)'s ray at depth s: O + i·U + j·V + s·D (axis and parallel
   // views, s = t) or O + s·(D + i·U + j·V) (perspective: s is the depth along the view
@@ -202,6 +266,10 @@ struct TileOctree
     {
       return; // no ray of this piece
     }
+    if (this->BeyondCut(i0, j0, size, ta))
+    {
+      return; // every ray of the node has met its first root in front of it
+    }
     double box[6];
     this->Box(i0, j0, size, ta, tb, box);
     // (a perspective node is as wide as its far end; at most 16 depth halvings, for a
@@ -210,8 +278,10 @@ struct TileOctree
     if (tb - ta > width && level < 16)
     {
       // Deeper than wide: halve the depth first (front half first).
-      if (this->Kernel->ClassifyBox(box) != 0)
+      const int sign = this->Kernel->ClassifyBox(box);
+      if (sign != 0)
       {
+        this->Decided(i0, j0, size, ta, sign);
         return;
       }
       const double mid = 0.5 * (ta + tb);
@@ -224,8 +294,10 @@ struct TileOctree
     if (this->Axis < 0)
     {
       // A camera view: the node's own box, then its eight children's.
-      if (this->Kernel->ClassifyBox(box) != 0)
+      const int sign = this->Kernel->ClassifyBox(box);
+      if (sign != 0)
       {
+        this->Decided(i0, j0, size, ta, sign);
         return;
       }
       if (size <= LeafSize)
@@ -251,8 +323,10 @@ struct TileOctree
       return;
     }
     int octants[8];
-    if (this->Kernel->ClassifyBoxAndOctants(box, octants, true) != 0)
+    const int sign = this->Kernel->ClassifyBoxAndOctants(box, octants, true);
+    if (sign != 0)
     {
+      this->Decided(i0, j0, size, ta, sign);
       return;
     }
     // Octant bit a: the upper half of world axis a. i and j grow with their axes; t
@@ -270,6 +344,10 @@ struct TileOctree
           {
             this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
           }
+          else if (i0 + ih * half < v.W && j0 + jh * half < v.H)
+          {
+            this->Decided(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, octants[o]);
+          }
         }
       }
     }
@@ -279,6 +357,10 @@ struct TileOctree
   {
     const int column =
       ((j0 - this->TileJ) / LeafSize) * (TileSize / LeafSize) + (i0 - this->TileI) / LeafSize;
+    if (this->FirstHit && this->Cut[column] <= ta)
+    {
+      return;
+    }
     this->Leaves.push_back({ column, { ta, tb } });
   }
 };
@@ -869,11 +951,15 @@ int vtkPiRayCaster::RequestData(
         octree.PixelSize = std::max(vtkMath::Norm(v.U), vtkMath::Norm(v.V));
         octree.RowBegin = rowBegin;
         octree.RowEnd = rowEnd;
+        // (axis views only: a camera's boxes reach beyond the bounds, where its rays,
+        // clipped to them, do not search, so a sign change there proves no hit)
+        octree.FirstHit = !allHits && axis >= 0;
         for (vtkIdType id = begin; id < end; ++id)
         {
           octree.TileI = static_cast<int>(id % tw) * TileSize;
           octree.TileJ = (tileRowBegin + static_cast<int>(id / tw)) * TileSize;
           octree.Leaves.clear();
+          octree.ResetCuts();
           octree.Visit(octree.TileI, octree.TileJ, TileSize, s0, s1);
           // Counting sort by column (stable: each column keeps increasing depth), merging
           // ranges that touch.
