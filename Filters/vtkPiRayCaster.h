@@ -246,11 +246,12 @@ protected:
 private:
 #ifndef __VTK_WRAP__
   // Output port 1: the shaded first hits and their depth, one slice per view, from the
-  // point arrays of the hits (all of them, also those of rows beyond the piece).
+  // point arrays of the hits (all of them, also those of rows beyond the piece), which
+  // lie row after row: image row r (view by view) holds hits rowOffsets[r] to
+  // rowOffsets[r + 1] − 1.
   void Shade(const std::vector<vtkPiRayCasterDetail::View>& views, int rowBegin, int rowEnd,
-    vtkIdType hitCount, const double* depth, const int* pixel, const int* viewIndex,
-    const int* hitIndex, vtkFloatArray* normals, vtkUnsignedCharArray* singular,
-    vtkImageData* image);
+    const vtkIdType* rowOffsets, const double* depth, const int* pixel, const int* hitIndex,
+    vtkFloatArray* normals, vtkUnsignedCharArray* singular, vtkImageData* image);
   // Per image row: its hits, kept (emptied, not freed) from one execution to the next,
   // so that casting again does not fault that memory in again (up to 256 MiB of them;
   // a larger cast releases them).
