@@ -192,7 +192,8 @@ struct TileOctree
     return true;
   }
 
-  // A box decided with `sign` over the node's rays at depths [ta, tb].
+  // A box decided with `sign` over the node's rays at depths [ta, tb]. (Columns beyond
+  // the image or the piece hold no ray: what they record is never wrong.)
   void Decided(int i0, int j0, int size, double ta, int sign)
   {
     if (!this->FirstHit)
@@ -344,7 +345,7 @@ struct TileOctree
           {
             this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
           }
-          else if (i0 + ih * half < v.W && j0 + jh * half < v.H)
+          else
           {
             this->Decided(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, octants[o]);
           }
