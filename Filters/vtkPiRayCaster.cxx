@@ -131,6 +131,11 @@ constexpr int LeafSize = 8;
 struct DepthRange
 {
   double Start, End;
+  // Axis views: +1 or −1 where F is strictly monotone along the rays over the whole
+  // range (each leaf it joins so, in one direction: the parent's
+  // ProductKernel::ClassifyBoxAndOctants tells, per octant), so a ray holds a root there exactly where F changes sign between the
+  // range's ends; 0 where it may turn (and for cameras).
+  int Monotone;
 };
 
 // Per view: the leaf columns' depth ranges (CSR by column, row-major over columns).
@@ -260,7 +265,8 @@ struct TileOctree
     }
   }
 
-  void Visit(int i0, int j0, int size, double ta, double tb, int level = 0)
+  // `monotone`: a leaf's direction of monotony along the rays (its parent's verdict).
+  void Visit(int i0, int j0, int size, double ta, double tb, int level = 0, int monotone = 0)
   {
     const View& v = *this->V;
     if (i0 >= v.W || j0 >= v.H || j0 + size <= this->RowBegin || j0 >= this->RowEnd)
@@ -303,7 +309,7 @@ struct TileOctree
       }
       if (size <= LeafSize)
       {
-        this->AddLeaf(i0, j0, ta, tb);
+        this->AddLeaf(i0, j0, ta, tb, 0);
         return;
       }
       for (int front = 1; front >= 0; --front)
@@ -320,11 +326,14 @@ struct TileOctree
     }
     if (size <= LeafSize)
     {
-      this->AddLeaf(i0, j0, ta, tb);
+      this->AddLeaf(i0, j0, ta, tb, monotone);
       return;
     }
-    int octants[8];
-    const int sign = this->Kernel->ClassifyBoxAndOctants(box, octants, true);
+    // (children that are leaves: which of them F is monotone on along the rays)
+    int octants[8], monotony[8];
+    const bool leaves = half <= LeafSize;
+    const int sign = this->Kernel->ClassifyBoxAndOctants(
+      box, octants, true, leaves ? monotony : nullptr, this->Axis);
     if (sign != 0)
     {
       this->Decided(i0, j0, size, ta, sign);
@@ -343,7 +352,8 @@ struct TileOctree
           const int o = (ih << this->U) | (jh << this->W) | (depthBit << this->Axis);
           if (octants[o] == 0)
           {
-            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
+            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb,
+              level, leaves ? monotony[o] : 0);
           }
           else
           {
@@ -354,7 +364,7 @@ struct TileOctree
     }
   }
 
-  void AddLeaf(int i0, int j0, double ta, double tb)
+  void AddLeaf(int i0, int j0, double ta, double tb, int monotone = 0)
   {
     const int column =
       ((j0 - this->TileJ) / LeafSize) * (TileSize / LeafSize) + (i0 - this->TileI) / LeafSize;
@@ -362,7 +372,7 @@ struct TileOctree
     {
       return;
     }
-    this->Leaves.push_back({ column, { ta, tb } });
+    this->Leaves.push_back({ column, { ta, tb, monotone } });
   }
 };
 
@@ -488,6 +498,7 @@ struct CastRows
       {
         continue;
       }
+      options.Monotone = range->Monotone != 0;
       search(a, b);
       if (!this->AllHits && !roots.empty())
       {
@@ -991,6 +1002,11 @@ int vtkPiRayCaster::RequestData(
               if (kept > first && ranges.back().End >= sorted[m].Start)
               {
                 ranges.back().End = std::max(ranges.back().End, sorted[m].End);
+                // (F monotone the same way on both parts is so on their union)
+                if (ranges.back().Monotone != sorted[m].Monotone)
+                {
+                  ranges.back().Monotone = 0;
+                }
               }
               else
               {

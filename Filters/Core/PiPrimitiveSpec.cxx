@@ -346,8 +346,8 @@ void TaylorFrame(const double box[6], double c[3], double h[3], double reach[3])
 }
 }
 
-bool PolynomialFactor::EvaluateTaylor(
-  const double box[6], Interval& whole, Interval* octants, bool natural) const
+bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Interval* octants,
+  bool natural, Interval* derivatives, int axis) const
 {
   if (!this->HasWorld)
   {
@@ -357,6 +357,11 @@ bool PolynomialFactor::EvaluateTaylor(
   double b[M * M * M];
   double c[3], h[3], reach[3];
   TaylorFrame(box, c, h, reach);
+  if (derivatives && !(octants && axis >= 0 && axis <= 2 && h[axis] > 0.0))
+  {
+    derivatives = nullptr;
+  }
+  double derivativeScale = derivatives ? 1.0 / h[axis] : 0.0; // world: d/dx = d/du / h
   int n;
   if (this->Diagonal && this->Poly.IsEvenQuartic())
   {
@@ -376,6 +381,11 @@ bool PolynomialFactor::EvaluateTaylor(
       lh[a] = width + (width < 0 ? -slack : slack);
     }
     n = this->Poly.ExpandAbout(lc, lh, b);
+    if (derivatives)
+    {
+      // d/dx_axis = (A_aa / lh_a)·d/du_axis, positive (lh keeps the sign of A)
+      derivativeScale = this->A[axis][axis] / lh[axis];
+    }
   }
   else
   {
@@ -518,6 +528,49 @@ bool PolynomialFactor::EvaluateTaylor(
     const double slack = std::max(1e-12 * (std::fabs(l) + std::fabs(u)), rounding);
     return Interval{ l - slack, u + slack };
   };
+  if (derivatives)
+  {
+    // ∂/∂u_axis = Σ α_axis·b_α·u^β (β = α − e_axis) over each octant, as the values
+    // above: u^β ranges over [0, 1] with the octant's sign where a power of β is odd.
+    // Widened by n² times the expansion's rounding (Σ α_axis·|δb_α| <= n·Σ|δb_α|) and
+    // 1e-12 of the terms, then scaled to d/dx_axis.
+    const int stride[3] = { m * m, m, 1 };
+    const double linear = n >= 1 ? b[stride[axis]] : 0.0;
+    V4 dLo[2] = { zero + linear, zero + linear }, dHi[2] = { zero + linear, zero + linear };
+    double terms = std::fabs(linear);
+    for (int i = 0; i <= n; ++i)
+    {
+      for (int j = 0; i + j <= n; ++j)
+      {
+        for (int k = 0; i + j + k <= n; ++k)
+        {
+          const int power = axis == 0 ? i : axis == 1 ? j : k;
+          const double v = b[(i * m + j) * m + k];
+          if (power == 0 || v == 0.0 || i + j + k == 1)
+          {
+            continue;
+          }
+          const double coefficient = power * v;
+          terms += std::fabs(coefficient);
+          int beta[3] = { i, j, k };
+          --beta[axis];
+          const int odd = (beta[0] & 1) | (beta[1] & 1) << 1 | (beta[2] & 1) << 2;
+          for (int h4 = 0; h4 < 2; ++h4)
+          {
+            const V4 s = (odd == 0 ? zero + 1.0 : OctantSigns[odd][h4]) * coefficient;
+            dLo[h4] += zero < s ? zero : s;
+            dHi[h4] += s < zero ? zero : s;
+          }
+        }
+      }
+    }
+    const double slack = double(n) * n * rounding + 1e-12 * terms;
+    for (int o = 0; o < 8; ++o)
+    {
+      derivatives[o] = { (dLo[o / 4][o % 4] - slack) * derivativeScale,
+        (dHi[o / 4][o % 4] + slack) * derivativeScale };
+    }
+  }
   whole = widen(lo, hi);
   if (octants)
   {

@@ -1475,9 +1475,62 @@ int ProductKernel::ClassifyBox(const double box[6]) const
   return SignOfProductMinus(enclosures, n, this->Blending);
 }
 
-int ProductKernel::ClassifyBoxAndOctants(
-  const double box[6], int octants[8], bool allOctants) const
+// +1 / −1 where Σ ∂f_i·Π_{j≠i} f_j over the enclosures has that sign beyond 1e-9 of its
+// terms (far beyond the rounding of these products, round to nearest), else 0; 0 also
+// where a magnitude leaves 2^±60 (the plain products could lose range).
+static int DerivativeSign(const Interval* f, const Interval* df, size_t n)
 {
+  constexpr double Range = 0x1p60;
+  constexpr size_t MaxFactors = 16;
+  if (n == 0 || n > MaxFactors)
+  {
+    return 0;
+  }
+  for (size_t i = 0; i < n; ++i)
+  {
+    const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
+    const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
+    if (!(fm <= Range && dm <= Range && (fm == 0.0 || fm >= 1.0 / Range) &&
+          (dm == 0.0 || dm >= 1.0 / Range)))
+    {
+      return 0;
+    }
+  }
+  auto times = [](const Interval& x, const Interval& y) {
+    const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
+    return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+  };
+  Interval prefix[MaxFactors + 1];
+  prefix[0] = { 1.0, 1.0 };
+  for (size_t i = 0; i < n; ++i)
+  {
+    prefix[i + 1] = times(prefix[i], f[i]);
+  }
+  Interval suffix = { 1.0, 1.0 };
+  double lo = 0.0, hi = 0.0, magnitude = 0.0;
+  for (size_t i = n; i-- > 0;)
+  {
+    const Interval term = times(times(prefix[i], df[i]), suffix);
+    lo += term.Lo;
+    hi += term.Hi;
+    magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
+    suffix = times(suffix, f[i]);
+  }
+  if (!std::isfinite(magnitude))
+  {
+    return 0;
+  }
+  const double slack = 1e-9 * magnitude + 1e-290;
+  return lo > slack ? 1 : hi < -slack ? -1 : 0;
+}
+
+int ProductKernel::ClassifyBoxAndOctants(
+  const double box[6], int octants[8], bool allOctants, int* monotone, int axis) const
+{
+  if (monotone)
+  {
+    std::fill(monotone, monotone + 8, 0);
+  }
   if (!this->AllPolynomial)
   {
     return 0;
@@ -1500,14 +1553,28 @@ int ProductKernel::ClassifyBoxAndOctants(
     parts = partsLarge.data();
     expanded = expandedLarge.data();
   }
+  // ∂f_i/∂x_axis on each octant, when asked for (up to 16 factors, each with a Taylor
+  // form: else no octant is reported monotone).
+  constexpr size_t MonotoneFactors = 16;
+  Interval derivatives[8 * MonotoneFactors];
+  bool derivativesKnown = monotone && axis >= 0 && axis <= 2 && n <= MonotoneFactors;
   // The Taylor forms alone first; the expressions as written only where they cannot
   // decide the box (as in ClassifyBox).
   bool natural = false;
   for (size_t i = 0; i < n; ++i)
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
-    Interval octant[8];
-    expanded[i] = f.EvaluateTaylor(box, whole[i], octant, false);
+    Interval octant[8], derivative[8];
+    expanded[i] = f.EvaluateTaylor(
+      box, whole[i], octant, false, derivativesKnown ? derivative : nullptr, axis);
+    derivativesKnown = derivativesKnown && expanded[i];
+    if (derivativesKnown)
+    {
+      for (int o = 0; o < 8; ++o)
+      {
+        derivatives[o * n + i] = derivative[o];
+      }
+    }
     if (expanded[i])
     {
       natural = natural || f.HasNaturalForm();
@@ -1559,6 +1626,10 @@ int ProductKernel::ClassifyBoxAndOctants(
       }
     }
     octants[o] = SignOfProductMinus(parts + o * n, n, this->Blending);
+    if (octants[o] == 0 && derivativesKnown)
+    {
+      monotone[o] = DerivativeSign(parts + o * n, derivatives + o * n, n);
+    }
     if (octants[o] == 0 && !allOctants)
     {
       // The box holds the surface as far as the octants can tell: the rest are not

@@ -151,7 +151,19 @@ public:
   /// then only up to the first undecided octant (the ones after it are given 0: once
   /// an octant may hold the surface, so may the box), unless `allOctants` asks for
   /// every octant's sign (for a traversal that skips the decided ones).
-  int ClassifyBoxAndOctants(const double box[6], int octants[8], bool allOctants = false) const;
+  ///
+  /// With `monotone` (and a world `axis`): for each undecided octant, +1 if F is
+  /// strictly increasing along that axis throughout it, −1 if strictly decreasing, 0 if
+  /// it may turn or the test does not apply (decided octants, more than 16 factors, a
+  /// factor without a Taylor form, magnitudes beyond 2^±60). From each factor's
+  /// enclosures on the octant and of its derivative (PolynomialFactor::EvaluateTaylor,
+  /// the same expansion) by the product rule ∂F = Σ ∂f_i Π_{j≠i} f_j in interval
+  /// arithmetic, which must exclude 0 by 1e-9 of its terms' magnitude (far beyond the
+  /// rounding of the products and of any evaluation of F there). A segment along that
+  /// axis in the octant then holds at most one root of F, and one exactly where F has
+  /// opposite signs at its ends.
+  int ClassifyBoxAndOctants(const double box[6], int octants[8], bool allOctants = false,
+    int* monotone = nullptr, int axis = -1) const;
 
   /// Row restriction in two steps, for callers that evaluate the same line many times:
   /// RestrictLine fills GetLineCoefficientCount() coefficients (every polynomial

@@ -620,62 +620,66 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
     return false;
   }
   constexpr double U = 0x1p-53;
-  constexpr double Range = 0x1p60;
-  const double m = 0.5 * (t0 + t1), h = 0.5 * (t1 - t0), am = std::fabs(m);
-  Interval f[QuickFactors], df[QuickFactors];
-  double q[MaxDegree + 1], M[MaxDegree + 1];
-  for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+  // (Skipped where the caller knows F to be monotone on the segment: the ends decide.)
+  if (!options.Monotone)
   {
-    const int d = counts[i] - 1;
-    switch (d)
+    constexpr double Range = 0x1p60;
+    const double m = 0.5 * (t0 + t1), h = 0.5 * (t1 - t0), am = std::fabs(m);
+    Interval f[QuickFactors], df[QuickFactors];
+    double q[MaxDegree + 1], M[MaxDegree + 1];
+    for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
     {
-      // (The usual degrees with the loops unrolled: the same operations.)
-      case 2: CentredForm<2>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
-      case 4: CentredForm<4>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
-      default: CentredForm<-1>(coefficients + offset, m, am, h, q, M, f[i], df[i], d); break;
+      const int d = counts[i] - 1;
+      switch (d)
+      {
+        // (The usual degrees with the loops unrolled: the same operations.)
+        case 2: CentredForm<2>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
+        case 4: CentredForm<4>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
+        default: CentredForm<-1>(coefficients + offset, m, am, h, q, M, f[i], df[i], d); break;
+      }
+      const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
+      const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
+      if (!(fm <= Range && dm <= Range))
+      {
+        return false; // (also NaN)
+      }
     }
-    const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
-    const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
-    if (!(fm <= Range && dm <= Range))
+    auto times = [](const Interval& x, const Interval& y) {
+      const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
+      return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+    };
+    // Prefix products (prefix[i] = Π_{j<i} f_j), then the whole product.
+    Interval prefix[QuickFactors + 1];
+    prefix[0] = { 1.0, 1.0 };
+    for (int i = 0; i < factors; ++i)
     {
-      return false; // (also NaN)
+      prefix[i + 1] = times(prefix[i], f[i]);
     }
-  }
-  auto times = [](const Interval& x, const Interval& y) {
-    const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
-    return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
-  };
-  // Prefix products (prefix[i] = Π_{j<i} f_j), then the whole product.
-  Interval prefix[QuickFactors + 1];
-  prefix[0] = { 1.0, 1.0 };
-  for (int i = 0; i < factors; ++i)
-  {
-    prefix[i + 1] = times(prefix[i], f[i]);
-  }
-  // Rounding of the products (round to nearest, not outwards) and the underflow of a
-  // tiny end: a relative and an absolute margin far above both.
-  const Interval& whole = prefix[factors];
-  const double size = std::max({ std::fabs(whole.Lo), std::fabs(whole.Hi), std::fabs(r) });
-  const double slack = 1e-12 * size + 1e-290;
-  if (whole.Lo - r > slack || whole.Hi - r < -slack)
-  {
-    return true; // F − r keeps one sign: no root
-  }
-  // The derivative Σ f_i' Π_{j≠i} f_j with suffix products formed on the way back.
-  Interval suffix = { 1.0, 1.0 };
-  double lo = 0.0, hi = 0.0, magnitude = 0.0;
-  for (int i = factors - 1; i >= 0; --i)
-  {
-    const Interval term = times(times(prefix[i], df[i]), suffix);
-    lo += term.Lo;
-    hi += term.Hi;
-    magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
-    suffix = times(suffix, f[i]);
-  }
-  const double dslack = 1e-12 * magnitude + 1e-290;
-  if (!(lo > dslack || hi < -dslack))
-  {
-    return false; // F may turn: the Bernstein path decides
+    // Rounding of the products (round to nearest, not outwards) and the underflow of a
+    // tiny end: a relative and an absolute margin far above both.
+    const Interval& whole = prefix[factors];
+    const double size = std::max({ std::fabs(whole.Lo), std::fabs(whole.Hi), std::fabs(r) });
+    const double slack = 1e-12 * size + 1e-290;
+    if (whole.Lo - r > slack || whole.Hi - r < -slack)
+    {
+      return true; // F − r keeps one sign: no root
+    }
+    // The derivative Σ f_i' Π_{j≠i} f_j with suffix products formed on the way back.
+    Interval suffix = { 1.0, 1.0 };
+    double lo = 0.0, hi = 0.0, magnitude = 0.0;
+    for (int i = factors - 1; i >= 0; --i)
+    {
+      const Interval term = times(times(prefix[i], df[i]), suffix);
+      lo += term.Lo;
+      hi += term.Hi;
+      magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
+      suffix = times(suffix, f[i]);
+    }
+    const double dslack = 1e-12 * magnitude + 1e-290;
+    if (!(lo > dslack || hi < -dslack))
+    {
+      return false; // F may turn: the Bernstein path decides
+    }
   }
   // Monotone: F at the ends, with a bound on each evaluation's rounding (Horner of |c|
   // at |t| bounds every term; γ as above, for the products too).

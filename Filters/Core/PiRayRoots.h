@@ -104,6 +104,12 @@ struct RayRootOptions
   double Tolerance = 1e-10; ///< length of the interval a root is known to
   bool AllRoots = true;     ///< false: stop at the first (smallest t) root
   int MaximumDepth = 200;   ///< subdivision depth guard
+  /// The caller knows F to be strictly monotone on [t0, t1] (the ray caster's octree:
+  /// ProductKernel::ClassifyBoxAndOctants on the leaf boxes the segment lies in): the
+  /// enclosures that would prove it are skipped, and the segment holds a root exactly
+  /// where F has opposite signs at its ends (an end within rounding of 0 still goes to
+  /// the general search).
+  bool Monotone = false;
 };
 
 /// The roots of the subdivision searches (FindRayRoots, MoleculeField::CastRay), which
