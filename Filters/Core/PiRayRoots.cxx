@@ -610,7 +610,9 @@ constexpr int QuickFactors = 16;
 // beyond 2^±60 where the plain interval products could lose range) is left undecided:
 // false, nothing added, and the Bernstein path decides. Sound, not identical: a piece
 // the Bernstein path would subdivide down to a tangent root within its relative slack
-// of 0 (F's true minimum above 0 by less than 1e-12 of F) is excluded here.
+// of 0 (F's true minimum above 0 by less than 1e-12 of F) is excluded here. With
+// options.Monotone (the caller proved F monotone on the segment) the enclosures are
+// skipped: the ends decide as in the monotone case.
 bool QuickSegment(const double* coefficients, const int* counts, int factors, double r,
   double t0, double t1, const RayRootOptions& options, RootCluster& cluster, bool& found)
 {

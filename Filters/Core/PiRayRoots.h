@@ -34,6 +34,10 @@
  * that misses r means no root, a derivative Σ p_i' Π_{j≠i} p_j of one sign with F of
  * strictly opposite signs at the ends (beyond their rounding) means exactly one,
  * solved by the same Newton's method. Everything else goes on to the Bernstein form.
+ * Where the caller already knows F to be monotone on the segment
+ * (RayRootOptions::Monotone: the ray caster's octree proves it per leaf from enclosures
+ * of the factors' derivatives over the leaf's box), the enclosures are skipped and the
+ * signs at the ends decide.
  *
  * Thin features (a torus of minor radius 0.01, two spheres 1e-6 apart) are therefore
  * never skipped, unlike fixed-step marching. No VTK here.
