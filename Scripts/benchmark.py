@@ -3,7 +3,9 @@
     pvpython benchmark.py MODELS_DIR [N]      (./run bench; N = grid points per axis, 256)
 
 For each model and each vtkSMPTools backend (Sequential, STDThread), measured side by
-side in one run (best of 5: on a shared 2-core machine single runs vary by half):
+side in one run (best of 5, the pipelines compared taking turns, one execution each per
+round: on a shared 2-core machine single runs vary by half, in phases of seconds, and
+turns let a slow phase slow every side alike):
   grid eval   vtkSampleFunction over vtkImplicitSum of the same factors (VTK's own way
               to compose functions: a virtual call per point per factor; a sum, but the
               same cost as a hand-written product), vtkSampleFunction over vtkPiSurface
@@ -28,13 +30,17 @@ from vtkmodules.vtkCommonDataModel import vtkImplicitSum
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 
 
-def best_of(f, n=5):
-    best = float("inf")
+def best_of(functions, n=5):
+    """The best time and the last result of each function, over n rounds in which each
+    runs once, in turn."""
+    best = [float("inf")] * len(functions)
+    results = [None] * len(functions)
     for _ in range(n):
-        t = time.perf_counter()
-        result = f()
-        best = min(best, time.perf_counter() - t)
-    return best, result
+        for k, f in enumerate(functions):
+            t = time.perf_counter()
+            results[k] = f()
+            best[k] = min(best[k], time.perf_counter() - t)
+    return list(zip(best, results))
 
 
 def ten_spheres():
@@ -119,10 +125,8 @@ def run(name, surface, n):
             grid.Modified()
             grid.Update()
 
-        t_sum_eval, _ = best_of(sum_eval)
-        t_vtk_eval, _ = best_of(vtk_eval)
-        t_pi_eval, _ = best_of(pi_eval)
-        t_grid_eval, _ = best_of(grid_eval)
+        (t_sum_eval, _), (t_vtk_eval, _), (t_pi_eval, _), (t_grid_eval, _) = best_of(
+            [sum_eval, vtk_eval, pi_eval, grid_eval])
 
         sample_n = sampler(surface, bounds, n)
         contour = vtkFlyingEdges3D()
@@ -157,9 +161,8 @@ def run(name, surface, n):
             plain.Update()
             return plain.GetOutput().GetNumberOfCells()
 
-        t_vtk_mesh, cells_vtk = best_of(vtk_mesh)
-        t_pi_mesh, cells_pi = best_of(pi_mesh)
-        t_pi_plain, cells_plain = best_of(pi_plain)
+        (t_vtk_mesh, cells_vtk), (t_pi_mesh, cells_pi), (t_pi_plain, cells_plain) = best_of(
+            [vtk_mesh, pi_mesh, pi_plain])
         rows.append((name, backend, t_sum_eval, t_vtk_eval, t_pi_eval, t_grid_eval, t_vtk_mesh,
                      t_pi_mesh, cells_vtk, cells_pi, t_pi_plain, cells_plain))
     return rows
