@@ -1055,6 +1055,19 @@ int vtkPiRayCaster::RequestData(
     }
   }
   lap("tiles");
+  if (lap.IsEnabled())
+  {
+    size_t ranges = 0, monotone = 0;
+    for (const ViewSkipping& view : skipping)
+    {
+      ranges += view.Ranges.size();
+      for (const DepthRange& r : view.Ranges)
+      {
+        monotone += r.Monotone != 0;
+      }
+    }
+    std::cerr << ranges << " depth ranges to search, " << monotone << " of them monotone\n";
+  }
   std::atomic<vtkIdType> finished{ 0 };
   CastRows cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &skipping, this,
     &abort, rowBegin, rowEnd, &finished, rowCount };
