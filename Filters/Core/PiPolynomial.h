@@ -10,6 +10,8 @@
 #ifndef PiPolynomial_h
 #define PiPolynomial_h
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,41 @@ struct Interval
   double Lo, Hi;
   bool Contains(double v) const { return this->Lo <= v && v <= this->Hi; }
 };
+
+/// x·y over intervals, each bound rounded to nearest (callers widen by their own slack).
+inline Interval TimesNearest(const Interval& x, const Interval& y)
+{
+  const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
+  return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
+}
+
+/// prefix[i] = Π_{j<i} f_j over intervals (prefix[0] = [1, 1]), for i = 0..n.
+inline void PrefixProducts(const Interval* f, int n, Interval* prefix)
+{
+  prefix[0] = { 1.0, 1.0 };
+  for (int i = 0; i < n; ++i)
+  {
+    prefix[i + 1] = TimesNearest(prefix[i], f[i]);
+  }
+}
+
+/// The product rule over enclosures, Σ_i df_i·Π_{j≠i} f_j, as [lo, hi] (each term
+/// prefix_i·df_i·suffix_i, the suffixes formed on the way back), and the sum of the
+/// terms' magnitudes (for the caller's rounding slack). `prefix` from PrefixProducts.
+inline void ProductRule(const Interval* f, const Interval* df, int n, const Interval* prefix,
+  double& lo, double& hi, double& magnitude)
+{
+  Interval suffix = { 1.0, 1.0 };
+  lo = hi = magnitude = 0.0;
+  for (int i = n - 1; i >= 0; --i)
+  {
+    const Interval term = TimesNearest(TimesNearest(prefix[i], df[i]), suffix);
+    lo += term.Lo;
+    hi += term.Hi;
+    magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
+    suffix = TimesNearest(suffix, f[i]);
+  }
+}
 
 /// Octant o of the box [b0,b1]x[b2,b3]x[b4,b5]: the upper half [c, hi] on axis a when
 /// bit a of o is set, the lower half [lo, c] otherwise, c = (lo + hi)/2 as computed.

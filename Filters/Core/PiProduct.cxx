@@ -1496,26 +1496,10 @@ static int DerivativeSign(const Interval* f, const Interval* df, size_t n)
       return 0;
     }
   }
-  auto times = [](const Interval& x, const Interval& y) {
-    const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
-    return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
-  };
   Interval prefix[MaxFactors + 1];
-  prefix[0] = { 1.0, 1.0 };
-  for (size_t i = 0; i < n; ++i)
-  {
-    prefix[i + 1] = times(prefix[i], f[i]);
-  }
-  Interval suffix = { 1.0, 1.0 };
-  double lo = 0.0, hi = 0.0, magnitude = 0.0;
-  for (size_t i = n; i-- > 0;)
-  {
-    const Interval term = times(times(prefix[i], df[i]), suffix);
-    lo += term.Lo;
-    hi += term.Hi;
-    magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
-    suffix = times(suffix, f[i]);
-  }
+  PrefixProducts(f, static_cast<int>(n), prefix);
+  double lo, hi, magnitude;
+  ProductRule(f, df, static_cast<int>(n), prefix, lo, hi, magnitude);
   if (!std::isfinite(magnitude))
   {
     return 0;

@@ -646,17 +646,9 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
         return false; // (also NaN)
       }
     }
-    auto times = [](const Interval& x, const Interval& y) {
-      const double c[4] = { x.Lo * y.Lo, x.Lo * y.Hi, x.Hi * y.Lo, x.Hi * y.Hi };
-      return Interval{ std::min({ c[0], c[1], c[2], c[3] }), std::max({ c[0], c[1], c[2], c[3] }) };
-    };
     // Prefix products (prefix[i] = Π_{j<i} f_j), then the whole product.
     Interval prefix[QuickFactors + 1];
-    prefix[0] = { 1.0, 1.0 };
-    for (int i = 0; i < factors; ++i)
-    {
-      prefix[i + 1] = times(prefix[i], f[i]);
-    }
+    PrefixProducts(f, factors, prefix);
     // Rounding of the products (round to nearest, not outwards) and the underflow of a
     // tiny end: a relative and an absolute margin far above both.
     const Interval& whole = prefix[factors];
@@ -667,16 +659,8 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
       return true; // F − r keeps one sign: no root
     }
     // The derivative Σ f_i' Π_{j≠i} f_j with suffix products formed on the way back.
-    Interval suffix = { 1.0, 1.0 };
-    double lo = 0.0, hi = 0.0, magnitude = 0.0;
-    for (int i = factors - 1; i >= 0; --i)
-    {
-      const Interval term = times(times(prefix[i], df[i]), suffix);
-      lo += term.Lo;
-      hi += term.Hi;
-      magnitude += std::max(std::fabs(term.Lo), std::fabs(term.Hi));
-      suffix = times(suffix, f[i]);
-    }
+    double lo, hi, magnitude;
+    ProductRule(f, df, factors, prefix, lo, hi, magnitude);
     const double dslack = 1e-12 * magnitude + 1e-290;
     if (!(lo > dslack || hi < -dslack))
     {

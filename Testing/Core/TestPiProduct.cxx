@@ -1324,6 +1324,32 @@ std::vector<Factor> EnclosureFactors()
   }
   return fs;
 }
+
+// EnclosureFactors, ready for the enclosures (PrepareIntervals).
+std::vector<Factor> PreparedEnclosureFactors()
+{
+  std::vector<Factor> fs = EnclosureFactors();
+  for (Factor& f : fs)
+  {
+    f.Polynomial.PrepareIntervals();
+  }
+  return fs;
+}
+
+// Box n of the enclosure tests: 1e-4 to 10 wide, within 3 of the origin, every fourth
+// within 30. Returns its size.
+double RandomEnclosureBox(std::mt19937& rng, int n, double box[6])
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double size = std::pow(10.0, -4.0 + 5.0 * u(rng));
+  const double far = n % 4 == 0 ? 30.0 : 3.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = far * (2.0 * u(rng) - 1.0);
+    box[2 * a + 1] = box[2 * a] + size * (0.2 + u(rng));
+  }
+  return size;
+}
 }
 
 // The Taylor enclosures (PolynomialFactor::EvaluateTaylor) hold every value our
@@ -1332,13 +1358,8 @@ std::vector<Factor> EnclosureFactors()
 // near the origin and 30 units away.
 TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
 {
-  std::vector<Factor> fs = EnclosureFactors();
-  for (Factor& f : fs)
-  {
-    f.Polynomial.PrepareIntervals();
-  }
+  std::vector<Factor> fs = PreparedEnclosureFactors();
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   int expanded = 0, fallbacks = 0;
   for (size_t f = 0; f < fs.size(); ++f)
   {
@@ -1346,14 +1367,8 @@ TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
     ProductKernel single({ fs[f] }, 0.0);
     for (int n = 0; n < 200; ++n)
     {
-      const double size = std::pow(10.0, -4.0 + 5.0 * u(rng));
-      const double far = n % 4 == 0 ? 30.0 : 3.0;
       double box[6];
-      for (int a = 0; a < 3; ++a)
-      {
-        box[2 * a] = far * (2.0 * u(rng) - 1.0);
-        box[2 * a + 1] = box[2 * a] + size * (0.2 + u(rng));
-      }
+      const double size = RandomEnclosureBox(rng, n, box);
       Interval whole, octants[8];
       if (!factor.EvaluateTaylor(box, whole, octants))
       {
@@ -1402,31 +1417,20 @@ TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
 // EvaluateTaylor's derivative enclosures (the ray caster's monotone leaves) hold the
 // exact derivative along their axis at every sample of each octant, for every kind of
 // factor (local even quartics, dense world expansions, rotated frames, degree 6), on
-// boxes from 1e-4 to 10 wide, and are no wider than a few times the derivative's spread
-// on small boxes (the test reaches both expansion paths).
+// boxes from 1e-4 to 10 wide, and are tight enough to give the derivative a sign on many
+// octants.
 TEST(ProductKernel, TaylorDerivativeEnclosuresHoldTheGradient)
 {
-  std::vector<Factor> fs = EnclosureFactors();
-  for (Factor& f : fs)
-  {
-    f.Polynomial.PrepareIntervals();
-  }
+  std::vector<Factor> fs = PreparedEnclosureFactors();
   std::mt19937 rng(13);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   int checked = 0, signedOctants = 0;
   for (size_t f = 0; f < fs.size(); ++f)
   {
     const PolynomialFactor& factor = fs[f].Polynomial;
     for (int n = 0; n < 150; ++n)
     {
-      const double size = std::pow(10.0, -4.0 + 5.0 * u(rng));
-      const double far = n % 4 == 0 ? 30.0 : 3.0;
       double box[6];
-      for (int a = 0; a < 3; ++a)
-      {
-        box[2 * a] = far * (2.0 * u(rng) - 1.0);
-        box[2 * a + 1] = box[2 * a] + size * (0.2 + u(rng));
-      }
+      const double size = RandomEnclosureBox(rng, n, box);
       const int axis = n % 3;
       Interval whole, octants[8], derivatives[8];
       for (Interval& d : derivatives)
