@@ -132,9 +132,10 @@ struct DepthRange
 {
   double Start, End;
   // Axis views: +1 or −1 where F is strictly monotone along the rays over the whole
-  // range (each leaf it joins so, in one direction: the parent's
-  // ProductKernel::ClassifyBoxAndOctants tells, per octant), so a ray holds a root there exactly where F changes sign between the
-  // range's ends; 0 where it may turn (and for cameras).
+  // range (each leaf it joins so, in one direction, as the parent's
+  // ProductKernel::ClassifyBoxAndOctants tells per octant), so a ray holds a root there
+  // exactly where F changes sign between the range's ends; 0 where it may turn (and for
+  // cameras).
   int Monotone;
 };
 
@@ -364,7 +365,7 @@ struct TileOctree
     }
   }
 
-  void AddLeaf(int i0, int j0, double ta, double tb, int monotone = 0)
+  void AddLeaf(int i0, int j0, double ta, double tb, int monotone)
   {
     const int column =
       ((j0 - this->TileJ) / LeafSize) * (TileSize / LeafSize) + (i0 - this->TileI) / LeafSize;
