@@ -409,6 +409,9 @@ private:
 // The slack covers rounding: 1e-12 relative per factor as the general path's, r compared
 // to 1e-9 relative, and the product's own rounding as an absolute floor (see below).
 constexpr int FastDegree = 48;
+// The zeros around the product's coefficients during its convolution (the highest
+// degree with unrolled loops).
+constexpr int FastPad = 4;
 
 // The single root of phi in [a, b] (phi(a) = va, opposite signs at the ends): Newton's
 // method safeguarded by the bracket (bisection where a step leaves it), from t.
@@ -770,16 +773,45 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   // (each coefficient summed in a register, in the order of increasing a as before:
   // accumulating into next[a + b] in memory makes every step wait for the store of
   // the one before)
-  for (int k = 0; k <= current + d; ++k)
+  if (D >= 0)
   {
-    double sum = 0.0, absolute = 0.0;
-    for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
+    // The usual degrees: the product is padded with FastPad >= D zeros on both sides
+    // (see FastRayRoots), so every coefficient sums D + 1 terms with no bounds to
+    // compute (the zero terms leave each sum as it is: the same results).
+    double magnitudes[D >= 0 ? D + 1 : 1];
+    for (int b = 0; b <= d; ++b)
     {
-      sum += product[k - b] * bern[b];
-      absolute += absProduct[k - b] * std::fabs(bern[b]);
+      magnitudes[b] = std::fabs(bern[b]);
     }
-    next[k] = sum;
-    absNext[k] = absolute;
+    for (int k = 0; k <= current + d; ++k)
+    {
+      double sum = 0.0, absolute = 0.0;
+      for (int b = d; b >= 0; --b)
+      {
+        sum += product[k - b] * bern[b];
+        absolute += absProduct[k - b] * magnitudes[b];
+      }
+      next[k] = sum;
+      absNext[k] = absolute;
+    }
+  }
+  else
+  {
+    for (int k = 0; k <= current + d; ++k)
+    {
+      double sum = 0.0, absolute = 0.0;
+      for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
+      {
+        sum += product[k - b] * bern[b];
+        absolute += absProduct[k - b] * std::fabs(bern[b]);
+      }
+      next[k] = sum;
+      absNext[k] = absolute;
+    }
+  }
+  for (int k = current + d + 1; k <= current + d + FastPad; ++k)
+  {
+    next[k] = absNext[k] = 0.0; // (the padding after the new product)
   }
   return true;
 }
@@ -808,17 +840,26 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   const int n = degree + 1;
   // The product in scaled (binomially weighted) Bernstein form, factor by factor.
   // (the product and the next one alternate between two buffers)
-  double buffers[2][FastDegree + 1];
-  double* product = buffers[0];
-  double* next = buffers[1];
+  // (with FastPad zeros before the first coefficient and after the last, as
+  // BernsteinFactor's unrolled degrees read them)
+  double buffers[2][FastDegree + 1 + 2 * FastPad];
+  double absBuffers[2][FastDegree + 1 + 2 * FastPad];
+  for (int b = 0; b < 2; ++b)
+  {
+    for (int k = 0; k < 2 * FastPad + 1; ++k)
+    {
+      buffers[b][k] = absBuffers[b][k] = 0.0;
+    }
+  }
+  double* product = buffers[0] + FastPad;
+  double* next = buffers[1] + FastPad;
   product[0] = 1.0;
   int current = 0; // degree of the product so far
   long exponent = 0;
   // The same convolution of the coefficients' absolute values: the size of the terms
   // each product coefficient sums, which bounds its rounding (see below).
-  double absBuffers[2][FastDegree + 1];
-  double* absProduct = absBuffers[0];
-  double* absNext = absBuffers[1];
+  double* absProduct = absBuffers[0] + FastPad;
+  double* absNext = absBuffers[1] + FastPad;
   absProduct[0] = 1.0;
   w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
