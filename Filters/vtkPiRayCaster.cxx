@@ -327,12 +327,7 @@ struct TileOctree
     }
     if (size <= LeafSize)
     {
-      if (monotone != 0)
-      {
-        this->AddLeaf(i0, j0, ta, tb, monotone);
-        return;
-      }
-      this->RefineLeaf(i0, j0, size, box, ta, tb);
+      this->AddLeaf(i0, j0, ta, tb, monotone);
       return;
     }
     // (children that are leaves: which of them F is monotone on along the rays)
@@ -366,48 +361,6 @@ struct TileOctree
             this->Decided(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, octants[o]);
           }
         }
-      }
-    }
-  }
-
-  // A leaf of an axis view whose parent could not prove F monotone along its rays: its
-  // own octants are classified (boxes half as wide, so tighter enclosures), and each
-  // half of its depth becomes a leaf of its own, monotone when every octant of that
-  // half that may hold a root is monotone the same way. (An octant without a root keeps
-  // one sign: a ray crossing it meets no root there, so the half's rays still hold at
-  // most one root, exactly where F's signs at their ends differ.) Halves without a
-  // root are dropped; half-width octants are not leaf columns, so they record no sign
-  // for the first-hit cut.
-  void RefineLeaf(int i0, int j0, int size, const double box[6], double ta, double tb)
-  {
-    int octants[8], monotony[8];
-    const int sign =
-      this->Kernel->ClassifyBoxAndOctants(box, octants, true, monotony, this->Axis);
-    if (sign != 0)
-    {
-      this->Decided(i0, j0, size, ta, sign);
-      return;
-    }
-    const bool depthUp = this->V->D[this->Axis] > 0;
-    const double mid = 0.5 * (ta + tb);
-    for (int front = 1; front >= 0; --front)
-    {
-      const int depthBit = (front == 1) != depthUp ? 1 : 0;
-      int direction = 0;
-      bool open = false, first = true;
-      for (int o = 0; o < 8; ++o)
-      {
-        if (((o >> this->Axis) & 1) != depthBit || octants[o] != 0)
-        {
-          continue;
-        }
-        open = true;
-        direction = first || direction == monotony[o] ? monotony[o] : 0;
-        first = false;
-      }
-      if (open)
-      {
-        this->AddLeaf(i0, j0, front ? ta : mid, front ? mid : tb, direction);
       }
     }
   }
