@@ -774,14 +774,19 @@ PISURF_AVX2_CLONES
 bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
 {
   const size_t count = this->Factors.size();
-  const double top = pisurf::Ldexp(1.0, 250 / static_cast<int>(count));
-  const double bottom = 1.0 / top;
-  bool plain = true;
+  // Every value non-zero, Π min(1, |f_k|) >= 2^-250 and Π max(1, |f_k|, |∇f_k|∞) <=
+  // 2^250: every partial product of the values then lies within 2^±250, and every
+  // partial gradient below 32·2^250 (NaN fails the comparisons).
+  bool finite = true;
+  double small = 1.0, big = 1.0;
   auto check = [&](size_t k) {
-    const double a = std::fabs(f[k]);
-    plain = plain && a >= bottom && a <= top && std::fabs(g[k][0]) <= top &&
-      std::fabs(g[k][1]) <= top && std::fabs(g[k][2]) <= top;
+    const double a = std::fabs(f[k]), g0 = std::fabs(g[k][0]), g1 = std::fabs(g[k][1]),
+                 g2 = std::fabs(g[k][2]);
+    finite = finite && a > 0.0 && a <= Big && g0 <= Big && g1 <= Big && g2 <= Big;
+    small *= std::min(1.0, a);
+    big *= std::max({ 1.0, a, g0, g1, g2 });
   };
+  auto plain = [&]() { return finite && small >= 0x1p-250 && big <= 0x1p250; };
   if (this->QuadricStride > 0)
   {
     // Four quadrics at a time: PolynomialFactor::QuadricWithGradient's operations.
@@ -807,7 +812,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
         check(k);
       }
     }
-    return plain;
+    return plain();
   }
   for (size_t k = 0; k < count; ++k)
   {
@@ -816,7 +821,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
                                 : pf.EvaluateWithGradient(p, g[k]);
     check(k);
   }
-  return plain;
+  return plain();
 }
 
 void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],
@@ -834,8 +839,7 @@ void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], dou
   {
     // ScaledProduct rescales only a factor or a partial product whose largest magnitude
     // (of value and gradient) is finite, non-zero and outside [Small, Big]; where none
-    // is, its operations are exactly these plain ones (most points the a-priori test
-    // refused: one factor tiny near its own sphere, the others large).
+    // is, its operations are exactly these plain ones.
     auto keeps = [](double v, const double w[3]) {
       const double a = std::max({ std::fabs(v), std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
       return (a >= Small && a <= Big) || a == 0.0 || !std::isfinite(a);
@@ -878,10 +882,10 @@ void ProductKernel::EvaluateVertex(const double p[3], double normal[3], double& 
   int& nearest, double* logGradientNorm) const
 {
   // Up to 32 polynomial factors: all values and gradients first (independent
-  // evaluations), then the product rule in plain doubles when every factor is non-zero
-  // within 2^±(250 / factors) and every gradient component below that: no partial
-  // product or gradient then leaves [2^-256, 2^256], where ScaledProduct never rescales,
-  // so the same operations give the same bits. Otherwise (a factor far from the
+  // evaluations), then the product rule in plain doubles when the values and gradients
+  // keep every partial product within 2^±250 (PlainVertexFactors): no partial product
+  // or gradient then leaves [2^-256, 2^256], where ScaledProduct never rescales, so the
+  // same operations give the same bits. Otherwise (a factor far from the
   // surface's own, as around a product of many spheres) ScaledProduct multiplies the
   // same values: the general path's bits without evaluating the factors again.
   const size_t count = this->Factors.size();
@@ -1082,8 +1086,9 @@ bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds
   // Along axis a every factor moves by at most Δ_i = h·|∂_a f_i|·(1 + 1e-12) + slack
   // between p and a probe (in their computed values), so the probe's product differs
   // from P(p) by at most T = Π(|f_i| + Δ_i) − Π|f_i|, summed without cancellation as
-  // T_i = T_{i−1}·(|f_i| + Δ_i) + Δ_i·Π_{j<i}|f_j|. Every term is plain (|f_i| within
-  // 2^±(250/n)) unless a Δ is huge: then T is inf and the test below fails.
+  // T_i = T_{i−1}·(|f_i| + Δ_i) + Δ_i·Π_{j<i}|f_j|. Every term is plain (each partial
+  // product of the |f_j| within 2^±250, PlainVertexFactors) unless a Δ is huge: then T
+  // is inf and the test below fails.
   const double h = bounds.Probe;
   double largest = 0.0, magnitude = 0.0;
   double product = 1.0;

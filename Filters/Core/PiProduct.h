@@ -211,8 +211,9 @@ public:
 
 private:
   // EvaluateVertex's first step for up to MaxPlainVertex polynomial factors: their values
-  // and gradients at p into f and g; true if every value is non-zero within
-  // 2^±(250 / factors) and every gradient component below that bound (the plain path).
+  // and gradients at p into f and g; true if every value is non-zero, the product of
+  // the values below 1 is at least 2^-250 and that of max(1, |f|, |∇f|∞) at most 2^250
+  // (so every partial product lies within 2^±250: the plain path).
   static constexpr size_t MaxPlainVertex = 32;
   bool PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const;
   // Its second step: nearest factor, product rule, unit normal and |∇F|; in plain
