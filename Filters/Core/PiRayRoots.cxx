@@ -772,42 +772,22 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   }
   // (each coefficient summed in a register, in the order of increasing a as before:
   // accumulating into next[a + b] in memory makes every step wait for the store of
-  // the one before)
-  if (D >= 0)
+  // the one before). The usual degrees (D >= 0) read the product padded with
+  // FastPad >= D zeros on both sides (see FastRayRoots): every coefficient sums D + 1
+  // terms with no bounds to compute (the zero terms leave each sum as it is: the same
+  // results).
+  constexpr bool padded = D >= 0;
+  for (int k = 0; k <= current + d; ++k)
   {
-    // The usual degrees: the product is padded with FastPad >= D zeros on both sides
-    // (see FastRayRoots), so every coefficient sums D + 1 terms with no bounds to
-    // compute (the zero terms leave each sum as it is: the same results).
-    double magnitudes[D >= 0 ? D + 1 : 1];
-    for (int b = 0; b <= d; ++b)
+    double sum = 0.0, absolute = 0.0;
+    const int last = padded ? 0 : std::max(0, k - current);
+    for (int b = padded ? d : std::min(d, k); b >= last; --b)
     {
-      magnitudes[b] = std::fabs(bern[b]);
+      sum += product[k - b] * bern[b];
+      absolute += absProduct[k - b] * std::fabs(bern[b]);
     }
-    for (int k = 0; k <= current + d; ++k)
-    {
-      double sum = 0.0, absolute = 0.0;
-      for (int b = d; b >= 0; --b)
-      {
-        sum += product[k - b] * bern[b];
-        absolute += absProduct[k - b] * magnitudes[b];
-      }
-      next[k] = sum;
-      absNext[k] = absolute;
-    }
-  }
-  else
-  {
-    for (int k = 0; k <= current + d; ++k)
-    {
-      double sum = 0.0, absolute = 0.0;
-      for (int b = std::min(d, k); b >= std::max(0, k - current); --b)
-      {
-        sum += product[k - b] * bern[b];
-        absolute += absProduct[k - b] * std::fabs(bern[b]);
-      }
-      next[k] = sum;
-      absNext[k] = absolute;
-    }
+    next[k] = sum;
+    absNext[k] = absolute;
   }
   for (int k = current + d + 1; k <= current + d + FastPad; ++k)
   {

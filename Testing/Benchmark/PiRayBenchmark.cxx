@@ -125,7 +125,7 @@ void Run(const std::string& name, vtkPiSurface* surface, int n)
   const double ratio = sequential ? allCpu / oursCpu : allTime / ours;
   // The hits of both casts: per-hit work (roots, normals, the singularity test) makes
   // the time ratio follow the hit ratio.
-  const long firstHits = static_cast<long>(caster->GetOutput()->GetNumberOfPoints());
+  const long firstHits = static_cast<long>(hits->GetNumberOfPoints());
   const long allHits = static_cast<long>(all->GetOutput()->GetNumberOfPoints());
   char hitRatio[64];
   std::snprintf(hitRatio, sizeof(hitRatio), "%ld / %ld (%.2f)", allHits, firstHits,
@@ -160,7 +160,7 @@ void Run(const std::string& name, vtkPiSurface* surface, int n)
   }
   std::printf("| %s | %s | %.3f s | %.2f M | %s | %.2f | %s | %d | %.3f s | %ld of %ld |\n",
     name.c_str(), vtkSMPTools::GetBackend(), ours, double(n) * n / ours / 1e6, cpuRate, ratio,
-    hitRatio, steps, marcher, missed, static_cast<long>(hits->GetNumberOfPoints()));
+    hitRatio, steps, marcher, missed, firstHits);
   std::fflush(stdout);
 }
 }
