@@ -1536,6 +1536,11 @@ struct VertexAttributes
   std::atomic<bool>* Abort;
   std::atomic<vtkIdType>* Done;
   vtkIdType Total;
+  // The sampling's row restrictions (PASS 2), per row (j, k) its index or −1; null for
+  // a field.
+  const std::vector<vtkIdType>* RowIndex;
+  const std::vector<double>* RowCoefficients;
+  size_t RowCoefficientCount;
 
   // Newton's method on F along the edge x = x0 + s·dx, s ∈ [0, 1], from s = t, kept in
   // the bracket the signs give (bisection when a step leaves it), on the factors'
@@ -1545,12 +1550,38 @@ struct VertexAttributes
   static double Newton(const pisurf::ProductKernel* kernel, const double* line, int axis,
     double x0, double dx, double t, double va, double small, double width)
   {
+    return NewtonOn(
+      [&](double s, double& v, double& slope) {
+        const bool ok = kernel->EvaluateOnAxisWithSlope(line, axis, x0 + s * dx, v, slope);
+        slope *= dx;
+        return ok;
+      },
+      t, va, small, width);
+  }
+
+  // The same along an x edge from grid point i of a row whose factors RestrictLine gave
+  // (the sampling's own restriction, parameter t = i − mid at the edge's start, one unit
+  // per cell): no restriction of its own to compute.
+  static double RowNewton(const pisurf::ProductKernel* kernel, const double* row, double t0,
+    double t, double va, double small, double width)
+  {
+    return NewtonOn(
+      [&](double s, double& v, double& slope) {
+        return kernel->EvaluateRestrictedWithSlope(row, t0 + s, v, slope);
+      },
+      t, va, small, width);
+  }
+
+  // Newton's loop for both: `evaluate(s, F, dF/ds)`, false where it cannot.
+  template <typename Evaluate>
+  static double NewtonOn(Evaluate&& evaluate, double t, double va, double small, double width)
+  {
     double lo = 0.0, hi = 1.0, s = std::max(0.0, std::min(1.0, t));
     double last = 0.0; // the last Newton step (0: none, or a bisection)
     for (int it = 0; it < 60; ++it)
     {
       double v, slope;
-      if (!kernel->EvaluateOnAxisWithSlope(line, axis, x0 + s * dx, v, slope))
+      if (!evaluate(s, v, slope))
       {
         return -1.0;
       }
@@ -1563,7 +1594,7 @@ struct VertexAttributes
       {
         return 0.5 * (lo + hi);
       }
-      double next = s - v / (slope * dx);
+      double next = s - v / slope;
       const bool newton = next > lo && next < hi;
       if (!newton)
       {
@@ -1644,7 +1675,10 @@ struct VertexAttributes
     return 0.5 * (lo + hi);
   }
 
-  double Refine(const double a[3], const double b[3], double t, double va, double vb) const
+  // `row`: for an x edge, its grid row's restriction from the sampling (RestrictLine's
+  // coefficients, the edge starting at parameter rowT0), or null.
+  double Refine(const double a[3], const double b[3], double t, double va, double vb,
+    const double* row = nullptr, double rowT0 = 0.0) const
   {
     // A field that can certify the first root from the positive end in one pass (see
     // pisurf::Field::FirstRoot): the root nearest the outside, as the general method
@@ -1691,6 +1725,19 @@ struct VertexAttributes
       ++axis;
     }
     const pisurf::ProductKernel* kernel = this->Kernel->Field ? nullptr : this->Kernel->Kernel;
+    if (row && kernel && !compressed && ((va < 0 && vb > 0) || (va > 0 && vb < 0)))
+    {
+      // An x edge: Newton's method on the row's restriction, already made for the
+      // sampling (a product kernel has no outer-side test: its root is the answer).
+      const double length =
+        std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
+      const double root = RowNewton(kernel, row, rowT0, t, va,
+        1e-12 * std::max(std::fabs(va), std::fabs(vb)), this->Tolerance / length);
+      if (root >= 0.0)
+      {
+        return root;
+      }
+    }
     // On the stack for the usual few factors (a thread_local costs a TLS lookup per
     // vertex in a shared library).
     constexpr size_t StackCoefficients = 256;
@@ -1914,7 +1961,19 @@ struct VertexAttributes
       {
         if (this->Project)
         {
-          t = this->Refine(a, b, t, va, vb);
+          const double* row = nullptr;
+          double rowT0 = 0.0;
+          if (axis == 0 && this->RowIndex && this->RowCoefficients &&
+            !this->RowCoefficients->empty())
+          {
+            const vtkIdType r = (*this->RowIndex)[vtkIdType(idx[2]) * d[1] + idx[1]];
+            if (r >= 0)
+            {
+              row = this->RowCoefficients->data() + r * this->RowCoefficientCount;
+              rowT0 = idx[0] - 0.5 * (d[0] - 1);
+            }
+          }
+          t = this->Refine(a, b, t, va, vb, row, rowT0);
         }
         for (int k = 0; k < 3; ++k)
         {
@@ -2460,7 +2519,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   std::atomic<vtkIdType> done{ 0 };
   VertexAttributes attributes{ &evaluator, &g, &vertexEdge, &vertexT, &vertexEnds, points,
     normals, factor, gradientMagnitude, this->ProjectVertices, 1e-13 * size,
-    envelope && envelope->GetOutside() > 0, this, &abort, &done, vertices };
+    envelope && envelope->GetOutside() > 0, this, &abort, &done, vertices,
+    kernel ? &rowIndex : nullptr, kernel ? &coefficients : nullptr,
+    kernel ? kernel->GetLineCoefficientCount() : 0 };
   // Chunks of 4096 vertices: the main thread reports and checks for a cancel between them.
   vtkSMPTools::For(0, vertices, 4096, attributes);
   if (abort || this->CheckAbort())

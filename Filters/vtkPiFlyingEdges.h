@@ -43,8 +43,9 @@
  *    its grid edge. The edge's end values have opposite signs (the sign of F is exact),
  *    so the root is bracketed. Where every factor is a polynomial in an axis-aligned
  *    frame, the factors are restricted to the edge's line once (one pass over their
- *    terms) and Newton's method on the restricted product, kept in the bracket, finds
- *    the root in about three steps; where the plain product would leave the double
+ *    terms; an x edge takes its row's restriction from pass 2, where every polynomial
+ *    factor in any frame is restricted) and Newton's method on the restricted product,
+ *    kept in the bracket, finds the root in about three steps; where the plain product would leave the double
  *    range (thousands of factors, F beyond 1e200), Newton steps on F with the product
  *    kept as a logarithm, (1 − r/P) / Σ f_i'/f_i, safeguarded by bisection; otherwise
  *    (rotated frames, r = 0) regula falsi (Illinois) on F, or on the overflow-free

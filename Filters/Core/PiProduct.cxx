@@ -435,6 +435,44 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
   return std::isfinite(value) && std::isfinite(slope);
 }
 
+bool ProductKernel::EvaluateRestrictedWithSlope(
+  const double* coefficients, double t, double& value, double& slope) const
+{
+  if (!this->AllPolynomial)
+  {
+    return false;
+  }
+  const double bound = this->PlainBound, inverse = 1.0 / bound;
+  double product = 1.0, derivative = 0.0;
+  for (const Factor& f : this->Factors)
+  {
+    const int n = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
+    double v, d;
+    if (n == 3)
+    {
+      // (EvaluateUnivariateWithDerivative's operations, unrolled)
+      const double v1 = coefficients[2] * t + coefficients[1];
+      d = coefficients[2] * t + v1;
+      v = v1 * t + coefficients[0];
+    }
+    else
+    {
+      v = EvaluateUnivariateWithDerivative(coefficients, n, t, d);
+    }
+    const double a = std::fabs(v);
+    if (a > bound || (a != 0.0 && a < inverse))
+    {
+      return false;
+    }
+    derivative = derivative * v + product * d;
+    product *= v;
+    coefficients += n;
+  }
+  value = product - this->Blending;
+  slope = derivative;
+  return std::isfinite(value) && std::isfinite(slope);
+}
+
 // EvaluateRestrictedRow's Horner chains: acc[v] = Σ c[q]·t[v]^q for the group's vectors,
 // T terms (T > 0: the loop unrolled, the same operations) or `terms`.
 template <int T, int Vectors>

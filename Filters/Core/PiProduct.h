@@ -182,6 +182,12 @@ public:
   /// other points go through EvaluateRestricted.
   void EvaluateRestrictedRow(const double* coefficients, double t0, int n,
     const double origin[3], const double step[3], double* values) const;
+  /// F and dF/dt at parameter t of a RestrictLine restriction, in plain doubles (the
+  /// product rule over the factors), for Newton steps along a grid row; false if a
+  /// factor is not a polynomial, leaves 2^±min(256, 1000 / factors) or a result is not
+  /// finite (as EvaluateOnAxisWithSlope).
+  bool EvaluateRestrictedWithSlope(
+    const double* coefficients, double t, double& value, double& slope) const;
 
   /// Along the line through p parallel to world axis `axis`: each factor as a
   /// univariate polynomial in its local coordinate along that axis
