@@ -75,6 +75,20 @@ public:
     }
     this->Size = n;
   }
+  /// Allocate(n) unless the buffer already holds at least n values (kept as they are).
+  void Reserve(std::size_t n)
+  {
+    if (this->Size < n || !this->Data)
+    {
+      this->Allocate(n);
+    }
+  }
+  /// Frees the memory.
+  void Release()
+  {
+    this->Data.reset();
+    this->Size = 0;
+  }
   bool Empty() const { return this->Size == 0; }
   std::size_t GetSize() const { return this->Size; }
   T* GetPointer() { return this->Data.get(); }

@@ -111,6 +111,32 @@ struct vtkPiFlyingEdges::vtkInternals
   std::shared_ptr<const pisurf::Field> Field;
   std::vector<double> CacheGrid; // the grid the factor caches belong to
   std::vector<FactorCache> Factors;
+  // The contouring's work arrays (per active block: row signs, crossing-edge masks and
+  // offsets; per vertex: edge key, crossing parameter, end values), kept between
+  // executions below WorkLimit bytes in all: a re-execution then writes memory that is
+  // already mapped (at 256³ the cup's contouring faulted ~20 MB of huge pages in each
+  // time, a tenth of its time with two threads). Larger ones are released after use.
+  pisurf::Buffer<vtkIdType> VertexEdge;
+  pisurf::Buffer<double> VertexT, VertexEnds;
+  pisurf::Buffer<std::uint16_t> RowSigns, EdgeOffsets;
+  pisurf::Buffer<std::uint8_t> EdgeMasks;
+  static constexpr size_t WorkLimit = size_t(256) << 20;
+  void ReleaseLargeWork()
+  {
+    const size_t bytes = this->VertexEdge.GetSize() * sizeof(vtkIdType) +
+      (this->VertexT.GetSize() + this->VertexEnds.GetSize()) * sizeof(double) +
+      (this->RowSigns.GetSize() + this->EdgeOffsets.GetSize()) * sizeof(std::uint16_t) +
+      this->EdgeMasks.GetSize();
+    if (bytes > WorkLimit)
+    {
+      this->VertexEdge.Release();
+      this->VertexT.Release();
+      this->VertexEnds.Release();
+      this->RowSigns.Release();
+      this->EdgeOffsets.Release();
+      this->EdgeMasks.Release();
+    }
+  }
 };
 
 void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
@@ -2396,8 +2422,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
   std::vector<vtkIdType> vertexCount(activeCount + 1, 0), triangleCount(activeCount + 1, 0);
   // (not initialized on allocation: the Edges pass writes every entry)
-  pisurf::Buffer<vtkIdType> vertexEdge;
-  pisurf::Buffer<double> vertexT, vertexEnds;
+  pisurf::Buffer<vtkIdType>& vertexEdge = this->Internals->VertexEdge;
+  pisurf::Buffer<double>& vertexT = this->Internals->VertexT;
+  pisurf::Buffer<double>& vertexEnds = this->Internals->VertexEnds;
   // This piece's slab of block layers along z (all of them for one piece).
   const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
   const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
@@ -2415,11 +2442,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   Contour contour{ &g, envelope.get(), vtkMarchingCubesTriangleCases::GetCases(), &vertexCount,
     &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, nullptr, Contour::Count, slabBegin,
     slabEnd, nullptr, nullptr, nullptr, trianglesOfCase };
-  pisurf::Buffer<std::uint16_t> rowSigns, edgeOffsets;
-  pisurf::Buffer<std::uint8_t> edgeMasks;
-  rowSigns.Allocate(size_t(activeCount) * Contour::Rows);
-  edgeMasks.Allocate(size_t(activeCount) * Contour::EdgeRows);
-  edgeOffsets.Allocate(size_t(activeCount) * Contour::EdgeRows);
+  pisurf::Buffer<std::uint16_t>& rowSigns = this->Internals->RowSigns;
+  pisurf::Buffer<std::uint16_t>& edgeOffsets = this->Internals->EdgeOffsets;
+  pisurf::Buffer<std::uint8_t>& edgeMasks = this->Internals->EdgeMasks;
+  rowSigns.Reserve(size_t(activeCount) * Contour::Rows);
+  edgeMasks.Reserve(size_t(activeCount) * Contour::EdgeRows);
+  edgeOffsets.Reserve(size_t(activeCount) * Contour::EdgeRows);
   contour.RowSigns = rowSigns.GetPointer();
   contour.EdgeMasks = edgeMasks.GetPointer();
   contour.EdgeOffsets = edgeOffsets.GetPointer();
@@ -2448,9 +2476,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   vertexCount[activeCount] = vertices;
   triangleCount[activeCount] = triangles;
-  vertexEdge.Allocate(vertices);
-  vertexT.Allocate(vertices);
-  vertexEnds.Allocate(2 * vertices);
+  vertexEdge.Reserve(vertices);
+  vertexT.Reserve(vertices);
+  vertexEnds.Reserve(2 * vertices);
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory).
   const bool narrow = PiFitsInt32Cells(triangles, vertices);
   vtkNew<vtkIdTypeArray> connectivity;
@@ -2542,6 +2570,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     kernel ? kernel->GetLineCoefficientCount() : 0 };
   // Chunks of 4096 vertices: the main thread reports and checks for a cancel between them.
   vtkSMPTools::For(0, vertices, 4096, attributes);
+  this->Internals->ReleaseLargeWork();
   if (abort || this->CheckAbort())
   {
     return 1;
