@@ -111,8 +111,9 @@ struct vtkPiFlyingEdges::vtkInternals
   std::shared_ptr<const pisurf::Field> Field;
   std::vector<double> CacheGrid; // the grid the factor caches belong to
   std::vector<FactorCache> Factors;
-  // The contouring's work arrays (per active block: row signs, crossing-edge masks and
-  // offsets; per vertex: edge key, crossing parameter, end values), kept between
+  // The envelope's and the contouring's work arrays (per active block: free and reached
+  // points, row signs, crossing-edge masks and offsets; per vertex: edge key, crossing
+  // parameter, end values), kept between
   // executions below WorkLimit bytes in all: a re-execution then writes memory that is
   // already mapped (at 256³ the cup's contouring faulted ~20 MB of huge pages in each
   // time, a tenth of its time with two threads). Larger ones are released after use.
@@ -120,12 +121,14 @@ struct vtkPiFlyingEdges::vtkInternals
   pisurf::Buffer<double> VertexT, VertexEnds;
   pisurf::Buffer<std::uint16_t> RowSigns, EdgeOffsets;
   pisurf::Buffer<std::uint8_t> EdgeMasks;
+  pisurf::Buffer<std::uint16_t> EnvelopeFree, EnvelopeReached; // (see Envelope)
   static constexpr size_t WorkLimit = size_t(256) << 20;
   void ReleaseLargeWork()
   {
     const size_t bytes = this->VertexEdge.GetSize() * sizeof(vtkIdType) +
       (this->VertexT.GetSize() + this->VertexEnds.GetSize()) * sizeof(double) +
-      (this->RowSigns.GetSize() + this->EdgeOffsets.GetSize()) * sizeof(std::uint16_t) +
+      (this->RowSigns.GetSize() + this->EdgeOffsets.GetSize() + this->EnvelopeFree.GetSize() +
+        this->EnvelopeReached.GetSize()) * sizeof(std::uint16_t) +
       this->EdgeMasks.GetSize();
     if (bytes > WorkLimit)
     {
@@ -135,6 +138,8 @@ struct vtkPiFlyingEdges::vtkInternals
       this->RowSigns.Release();
       this->EdgeOffsets.Release();
       this->EdgeMasks.Release();
+      this->EnvelopeFree.Release();
+      this->EnvelopeReached.Release();
     }
   }
 };
@@ -812,14 +817,18 @@ public:
 
   // `field` (may be null) marks points of bounded positive components, which the flood
   // fill does not pass (see pisurf::Field::OffOuterSide).
-  Envelope(const Grid& g, int outside, const pisurf::Field* field = nullptr)
+  // `free` and `reached`: its work arrays (the mesher keeps them between executions).
+  Envelope(const Grid& g, int outside, const pisurf::Field* field,
+    pisurf::Buffer<std::uint16_t>& free, pisurf::Buffer<std::uint16_t>& reached)
     : G(g)
     , Outside(outside)
     , BlockState(g.Sign.size(), 0)
+    , Free(free)
+    , Reached(reached)
   {
     const size_t active = g.Active.size();
-    this->Free.Allocate(active * Rows);
-    this->Reached.Allocate(active * Rows);
+    this->Free.Reserve(active * Rows);
+    this->Reached.Reserve(active * Rows);
     // PASS 4a. Skipped blocks of the outside sign are free as a whole, except, for a
     // field, those in a bounded component (F keeps its sign over the block, so the whole
     // block is in the component of its centre): those count as the other sign.
@@ -1294,7 +1303,8 @@ private:
   const Grid& G;
   int Outside;
   std::vector<char> BlockState; // skipped blocks: FreeBlock, ReachedBlock or 0
-  pisurf::Buffer<std::uint16_t> Free, Reached; // per active block: Rows masks each
+  pisurf::Buffer<std::uint16_t>& Free;    // per active block: Rows masks each
+  pisurf::Buffer<std::uint16_t>& Reached; // (the same)
   std::vector<char> Queued; // per block: queued for the flood's next round
 };
 
@@ -2406,7 +2416,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           }
     }
     envelope.reset(
-      new Envelope(g, 2 * positive >= total ? 1 : -1, field.get()));
+      new Envelope(g, 2 * positive >= total ? 1 : -1, field.get(), this->Internals->EnvelopeFree,
+        this->Internals->EnvelopeReached));
     lap("envelope states");
     envelope->Flood();
   }
