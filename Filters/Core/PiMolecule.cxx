@@ -1264,6 +1264,43 @@ bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing
   return true;
 }
 
+namespace
+{
+// RefineEdge's atoms: of the candidates (atom ids), those whose ρ reaches the segment
+// [lower, upper] along `axis` through a, with per atom its id, the squared distance K
+// across the axis, W = a[axis] − c[axis], R², ρ² and 1/(ρ² − R²); returns their number.
+// Each candidate is written in any case and kept (the count advanced) only if it
+// reaches: no branch to mispredict. (A function of its own with restrict pointers: as a
+// lambda over references, every store reloaded the count and the array pointers.)
+int GatherReaching(const int* candidates, size_t n, const double* centers, const double* r2,
+  const double* rho2, const double* invSpan, const double a[3], int axis, double lower,
+  double upper, int* __restrict ids, double* __restrict K, double* __restrict W,
+  double* __restrict R2, double* __restrict Rho2, double* __restrict Inverse)
+{
+  const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
+  const double a1 = a[u1], a2 = a[u2], aa = a[axis];
+  int count = 0;
+  for (size_t m = 0; m < n; ++m)
+  {
+    const int i = candidates[m];
+    const double* c = centers + 3 * i;
+    const double x1 = a1 - c[u1], x2 = a2 - c[u2];
+    const double across = x1 * x1 + x2 * x2;
+    const double below = lower - c[axis], above = c[axis] - upper;
+    const double along = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    const double reach = rho2[i];
+    ids[count] = i;
+    K[count] = across;
+    W[count] = aa - c[axis];
+    R2[count] = r2[i];
+    Rho2[count] = reach;
+    Inverse[count] = invSpan[i];
+    count += across + along * along < reach * (1.0 + 1e-9);
+  }
+  return count;
+}
+}
+
 bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb,
   int from, double tolerance, EdgeVertex& vertex) const
 {
@@ -1328,54 +1365,21 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   double* const Inverse = Rho2 + buffer.Size;
   double* const G = Inverse + buffer.Size;
   double* const DG = G + buffer.Size;
-  int count = 0;
   const double lower = std::min(a[axis], b[axis]), upper = std::max(a[axis], b[axis]);
-  const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
-  // Written in any case, kept (count advanced) only if its ρ reaches the segment: no
-  // branch to mispredict.
-  auto consider = [&](int i) {
-    const double* c = &this->Centers[3 * i];
-    const double x1 = a[u1] - c[u1], x2 = a[u2] - c[u2];
-    const double across = x1 * x1 + x2 * x2;
-    const double below = lower - c[axis], above = c[axis] - upper;
-    const double along = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
-    ids[count] = i;
-    K[count] = across;
-    W[count] = a[axis] - c[axis];
-    R2[count] = this->R2[i];
-    Rho2[count] = this->Rho2[i];
-    Inverse[count] = this->InvSpan[i];
-    count += across + along * along < Rho2[count] * (1.0 + 1e-9);
-  };
-  if (cb == ca)
+  // The candidates: the cell's list, or the union of the two cells' (sorted) lists.
+  const int* candidates = p.data();
+  size_t candidateCount = p.size();
+  thread_local std::vector<int> merged;
+  if (cb != ca)
   {
-    for (int i : p)
-    {
-      consider(i);
-    }
+    merged.resize(p.size() + q.size());
+    candidates = merged.data();
+    candidateCount = static_cast<size_t>(
+      std::set_union(p.begin(), p.end(), q.begin(), q.end(), merged.begin()) - merged.begin());
   }
-  else
-  {
-    size_t x = 0, y = 0;
-    while (x < p.size() || y < q.size())
-    {
-      int i;
-      if (y == q.size() || (x < p.size() && p[x] < q[y]))
-      {
-        i = p[x++];
-      }
-      else if (x == p.size() || q[y] < p[x])
-      {
-        i = q[y++];
-      }
-      else
-      {
-        i = p[x++];
-        ++y;
-      }
-      consider(i);
-    }
-  }
+  const int count = GatherReaching(candidates, candidateCount, this->Centers.data(),
+    this->R2.data(), this->Rho2.data(), this->InvSpan.data(), a, axis, lower, upper, ids, K, W,
+    R2, Rho2, Inverse);
   // F on the segment and its derivative in s (LocalFactor: the same g as AtomFactor,
   // without branches).
   const double delta = b[axis] - a[axis];
