@@ -2310,8 +2310,17 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   std::vector<vtkIdType>& rows = this->Internals->Rows;
   rowIndex.assign(vtkIdType(g.Dims[1]) * g.Dims[2], -1);
   rows.clear();
+  // (Active is in block order: the blocks of one column along x are consecutive and
+  // need the same rows, so each column is visited once.)
+  int lastColumn = -1;
   for (int b : g.Active)
   {
+    const int column = b / g.Count[0];
+    if (column == lastColumn)
+    {
+      continue;
+    }
+    lastColumn = column;
     int c[3];
     g.BlockCoordinates(b, c);
     for (int k = g.First(c, 2); k <= g.Last(c, 2); ++k)
