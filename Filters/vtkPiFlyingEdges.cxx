@@ -2263,7 +2263,37 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           {
             continue;
           }
-          const int subSign = evaluator.ClassifyBox(sub);
+          // (A product of polynomials classifies the eight octants of the sub-group
+          // from the same expansions: an octant that holds exactly one block decides
+          // that block, which then skips its own classification below.)
+          int subOctants[8];
+          const bool octantsToo = evaluator.Kernel && !evaluator.Field &&
+            evaluator.Kernel->IsPolynomial();
+          const int subSign = octantsToo
+            ? evaluator.Kernel->ClassifyBoxAndOctants(sub, subOctants, true)
+            : evaluator.ClassifyBox(sub);
+          if (subSign == 0 && octantsToo)
+          {
+            for (int so = 0; so < 8; ++so)
+            {
+              int bc[3];
+              bool inside = subOctants[so] != 0;
+              double octant[6];
+              pisurf::OctantBox(sub, so, octant);
+              for (int a = 0; a < 3 && inside; ++a)
+              {
+                bc[a] = sublo[a] + ((so >> a) & 1);
+                // The block's box as ClassifyBlocks forms it, within the octant's.
+                inside = bc[a] < subhi[a] &&
+                  g.Origin[a] + g.First(bc, a) * g.Spacing[a] >= octant[2 * a] &&
+                  g.Origin[a] + g.Last(bc, a) * g.Spacing[a] <= octant[2 * a + 1];
+              }
+              if (inside)
+              {
+                g.Sign[g.BlockId(bc[0], bc[1], bc[2])] = static_cast<signed char>(subOctants[so]);
+              }
+            }
+          }
           if (subSign == 0)
           {
             continue;
