@@ -2234,7 +2234,14 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           box[2 * a + 1] =
             g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
         }
-        const int sign = evaluator.ClassifyBox(box);
+        // (A product of polynomials classifies the group's eight octants from the same
+        // expansions; an octant that holds exactly a sub-group below decides it.)
+        const bool octantsToo =
+          evaluator.Kernel && !evaluator.Field && evaluator.Kernel->IsPolynomial();
+        int groupOctants[8];
+        const int sign = octantsToo
+          ? evaluator.Kernel->ClassifyBoxAndOctants(box, groupOctants, true)
+          : evaluator.ClassifyBox(box);
         for (int z = lo[2]; z < hi[2]; ++z)
           for (int y = lo[1]; y < hi[1]; ++y)
             for (int x = lo[0]; x < hi[0]; ++x)
@@ -2263,12 +2270,29 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           {
             continue;
           }
-          // (A product of polynomials classifies the eight octants of the sub-group
-          // from the same expansions: an octant that holds exactly one block decides
-          // that block, which then skips its own classification below.)
+          if (octantsToo && groupOctants[o] != 0)
+          {
+            double octant[6];
+            pisurf::OctantBox(box, o, octant);
+            bool inside = true;
+            for (int a = 0; a < 3; ++a)
+            {
+              inside = inside && sub[2 * a] >= octant[2 * a] && sub[2 * a + 1] <= octant[2 * a + 1];
+            }
+            if (inside)
+            {
+              for (int z = sublo[2]; z < subhi[2]; ++z)
+                for (int y = sublo[1]; y < subhi[1]; ++y)
+                  for (int x = sublo[0]; x < subhi[0]; ++x)
+                  {
+                    g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(groupOctants[o]);
+                  }
+              continue;
+            }
+          }
+          // (Likewise the sub-group's octants: an octant that holds exactly one block
+          // decides that block, which then skips its own classification below.)
           int subOctants[8];
-          const bool octantsToo = evaluator.Kernel && !evaluator.Field &&
-            evaluator.Kernel->IsPolynomial();
           const int subSign = octantsToo
             ? evaluator.Kernel->ClassifyBoxAndOctants(sub, subOctants, true)
             : evaluator.ClassifyBox(sub);
