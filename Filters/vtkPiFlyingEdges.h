@@ -16,8 +16,10 @@
  *    overflow, else combined in sign and log-magnitude. A block whose enclosure of
  *    F = Π f_i − r excludes 0 is skipped: its sign is known and nothing in it is
  *    evaluated or contoured. Groups of 4³ blocks are classified first, then the 2³
- *    quarters of undecided groups; a block is kept only if one of its octants (bounded
- *    from the block's own expansion) may hold the surface.
+ *    quarters of undecided groups (for a product of polynomials, the octants of a
+ *    group or quarter, bounded from its own expansions, decide the quarters or blocks
+ *    they hold exactly); a block is kept only if one of its octants (bounded from the
+ *    block's own expansion) may hold the surface.
  * 2. Every polynomial factor is restricted once to each grid row that crosses an
  *    active block (an exact univariate polynomial about the row's middle), so no
  *    virtual call is paid per point per factor, and every grid point evaluates
@@ -83,7 +85,9 @@
  * and placement and by the grid:
  * when an edit changes one factor, only that factor is restricted again, and the mesh
  * is bit-identical to a fresh execution's (up to 64 MiB of coefficients; beyond that
- * every execution restricts every factor).
+ * every execution restricts every factor). The envelope's and the contouring's work
+ * arrays are kept too, up to 256 MiB in all (larger ones are released after each
+ * execution).
  *
  * Factors that are not polynomials have no interval enclosure: every block is then
  * active and they are evaluated point by point through their virtual calls.
