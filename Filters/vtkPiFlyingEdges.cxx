@@ -1211,68 +1211,74 @@ private:
     return added;
   }
 
-  // Any reached point on the plane `plane` of axis a?
+  // Any reached point on the plane `plane` of axis a? (Only that plane's rows.)
   static bool FaceReached(const std::uint16_t* reached, int a, int plane, const int n[3])
   {
-    for (int lk = 0; lk <= n[2]; ++lk)
-      for (int lj = 0; lj <= n[1]; ++lj)
+    if (a == 0)
+    {
+      for (int lk = 0; lk <= n[2]; ++lk)
+        for (int lj = 0; lj <= n[1]; ++lj)
+        {
+          if ((LoadRow(reached + lk * BlockPoints + lj) >> plane) & 1u)
+          {
+            return true;
+          }
+        }
+      return false;
+    }
+    const int count = a == 1 ? n[2] : n[1];
+    for (int q = 0; q <= count; ++q)
+    {
+      const int row = a == 1 ? q * BlockPoints + plane : plane * BlockPoints + q;
+      if (LoadRow(reached + row) != 0)
       {
-        if ((a == 1 && lj != plane) || (a == 2 && lk != plane))
-        {
-          continue;
-        }
-        const unsigned r = LoadRow(reached + lk * BlockPoints + lj);
-        if (a == 0 ? (r >> plane) & 1u : r != 0)
-        {
-          return true;
-        }
+        return true;
       }
+    }
     return false;
   }
 
   // Copies the reached points of plane `plane` (axis a) into plane `target` of the
-  // active block `slot` (the same points); true if any is new there.
+  // active block `slot` (the same points); true if any is new there. (Only the plane's
+  // rows.)
   bool PassFace(const std::uint16_t* reached, int a, int plane, const int n[3], int slot, int target)
   {
     const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
     std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
     bool added = false;
-    for (int lk = 0; lk <= n[2]; ++lk)
+    auto pass = [&](unsigned in, int to) {
+      const unsigned add = in & fr[to] & ~LoadRow(rr + to);
+      if (add && AddToRow(rr + to, add))
+      {
+        added = true;
+      }
+    };
+    if (a == 0)
+    {
+      for (int lk = 0; lk <= n[2]; ++lk)
+        for (int lj = 0; lj <= n[1]; ++lj)
+        {
+          const int row = lk * BlockPoints + lj;
+          pass(((LoadRow(reached + row) >> plane) & 1u) << target, row);
+        }
+    }
+    else if (a == 1)
+    {
+      for (int lk = 0; lk <= n[2]; ++lk)
+      {
+        pass(LoadRow(reached + lk * BlockPoints + plane), lk * BlockPoints + target);
+      }
+    }
+    else
+    {
       for (int lj = 0; lj <= n[1]; ++lj)
       {
-        unsigned in;
-        int to;
-        if (a == 0)
-        {
-          in = ((LoadRow(reached + lk * BlockPoints + lj) >> plane) & 1u) << target;
-          to = lk * BlockPoints + lj;
-        }
-        else if (a == 1)
-        {
-          if (lj != plane)
-          {
-            continue;
-          }
-          in = LoadRow(reached + lk * BlockPoints + lj);
-          to = lk * BlockPoints + target;
-        }
-        else
-        {
-          if (lk != plane)
-          {
-            continue;
-          }
-          in = LoadRow(reached + lk * BlockPoints + lj);
-          to = target * BlockPoints + lj;
-        }
-        const unsigned add = in & fr[to] & ~LoadRow(rr + to);
-        if (add && AddToRow(rr + to, add))
-        {
-          added = true;
-        }
+        pass(LoadRow(reached + plane * BlockPoints + lj), target * BlockPoints + lj);
       }
+    }
     return added;
   }
+
 
   // The reached points of an active block grown through its free points to a fixed
   // point: along x by shifts within a row, along y and z from the neighbouring rows, in
