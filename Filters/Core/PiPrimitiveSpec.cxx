@@ -456,8 +456,12 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
       }
     }
   }
-  // The octants' sums four at a time (lanes o = 0..3 and 4..7), each lane adding the
-  // same terms in the same order as one octant would alone.
+  // The octants' sums: in octant o a term b_α·u^α ranges over b_α·σ·[0, 1], σ = ±1 set
+  // by the odd powers of α (its class, 0..7) and the octant's halves. So the terms are
+  // summed per class, their negative parts N and positive parts P, and each octant then
+  // adds N and P (σ = +1) or −P and −N (σ = −1) of each class: eight sums per
+  // coefficient become two. (A reordering of the same sums: its rounding, like the
+  // lanes' before, is within the expansion's rounding bound added below.)
   const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
   V4 octLo[2], octHi[2];
   for (int o = 0; o < 8; ++o)
@@ -465,6 +469,8 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
     octLo[o / 4][o % 4] = olo[o];
     octHi[o / 4][o % 4] = ohi[o];
   }
+  double classLo[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }, classHi[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  unsigned classes = 0; // the classes with a term
   for (int i = 0; i <= n; ++i)
   {
     for (int j = 0; i + j <= n; ++j)
@@ -491,31 +497,35 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
           // u^α ∈ [0, 1] everywhere, in every octant.
           lo += std::min(v, 0.0);
           hi += std::max(v, 0.0);
-          if (octants)
-          {
-            const V4 s = zero + v;
-            for (int h4 = 0; h4 < 2; ++h4)
-            {
-              octLo[h4] += zero < s ? zero : s; // std::min(v, 0.0), signed zeros too
-              octHi[h4] += s < zero ? zero : s; // std::max(v, 0.0)
-            }
-          }
+          classLo[0] += std::min(v, 0.0);
+          classHi[0] += std::max(v, 0.0);
+          classes |= 1u;
           continue;
         }
         lo -= std::fabs(v);
         hi += std::fabs(v);
-        if (octants)
-        {
-          // In octant o, u^α has the sign Π (−1)^α_a over the lower halves (an exact
-          // multiplication by ±1).
-          const int odd = (i & 1) | (j & 1) << 1 | (k & 1) << 2;
-          for (int h4 = 0; h4 < 2; ++h4)
-          {
-            const V4 s = OctantSigns[odd][h4] * v;
-            octLo[h4] += zero < s ? zero : s;
-            octHi[h4] += s < zero ? zero : s;
-          }
-        }
+        // In octant o, u^α has the sign Π (−1)^α_a over the lower halves.
+        const int odd = (i & 1) | (j & 1) << 1 | (k & 1) << 2;
+        classLo[odd] += std::min(v, 0.0);
+        classHi[odd] += std::max(v, 0.0);
+        classes |= 1u << odd;
+      }
+    }
+  }
+  if (octants)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      if (!((classes >> c) & 1u))
+      {
+        continue;
+      }
+      const V4 negative = zero + classLo[c], positive = zero + classHi[c];
+      for (int h4 = 0; h4 < 2; ++h4)
+      {
+        const auto up = OctantSigns[c][h4] > zero; // σ = +1 in these lanes
+        octLo[h4] += up ? negative : -positive;
+        octHi[h4] += up ? positive : -negative;
       }
     }
   }
