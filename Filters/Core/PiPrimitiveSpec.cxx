@@ -548,6 +548,9 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
     const double linear = n >= 1 ? b[stride[axis]] : 0.0;
     V4 dLo[2] = { zero + linear, zero + linear }, dHi[2] = { zero + linear, zero + linear };
     double terms = std::fabs(linear);
+    // (Summed per class of β's odd powers, as the values above.)
+    double dClassLo[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }, dClassHi[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    unsigned dClasses = 0;
     for (int i = 0; i <= n; ++i)
     {
       for (int j = 0; i + j <= n; ++j)
@@ -565,13 +568,24 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
           int beta[3] = { i, j, k };
           --beta[axis];
           const int odd = (beta[0] & 1) | (beta[1] & 1) << 1 | (beta[2] & 1) << 2;
-          for (int h4 = 0; h4 < 2; ++h4)
-          {
-            const V4 s = (odd == 0 ? zero + 1.0 : OctantSigns[odd][h4]) * coefficient;
-            dLo[h4] += zero < s ? zero : s;
-            dHi[h4] += s < zero ? zero : s;
-          }
+          dClassLo[odd] += std::min(coefficient, 0.0);
+          dClassHi[odd] += std::max(coefficient, 0.0);
+          dClasses |= 1u << odd;
         }
+      }
+    }
+    for (int c = 0; c < 8; ++c)
+    {
+      if (!((dClasses >> c) & 1u))
+      {
+        continue;
+      }
+      const V4 negative = zero + dClassLo[c], positive = zero + dClassHi[c];
+      for (int h4 = 0; h4 < 2; ++h4)
+      {
+        const auto up = OctantSigns[c][h4] > zero; // σ = +1 in these lanes
+        dLo[h4] += up ? negative : -positive;
+        dHi[h4] += up ? positive : -negative;
       }
     }
     const double slack = double(n) * n * rounding + 1e-12 * terms;
