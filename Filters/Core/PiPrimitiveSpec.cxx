@@ -329,6 +329,30 @@ struct OctantSignTable
 };
 const OctantSignTable OctantSignsTable;
 const V4 (&OctantSigns)[8][2] = OctantSignsTable.Signs;
+
+// EvaluateTaylor's octant sums from its class sums: each octant (lanes o = 0..3 and
+// 4..7) adds, for every class c of odd powers present (bit c of `classes`), the class's
+// negative and positive parts where its terms keep their sign there (σ = +1), else
+// minus its positive and negative parts.
+void AddClassSums(const double negatives[8], const double positives[8], unsigned classes,
+  V4 lo[2], V4 hi[2])
+{
+  const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
+  for (int c = 0; c < 8; ++c)
+  {
+    if (!((classes >> c) & 1u))
+    {
+      continue;
+    }
+    const V4 negative = zero + negatives[c], positive = zero + positives[c];
+    for (int h4 = 0; h4 < 2; ++h4)
+    {
+      const auto up = OctantSigns[c][h4] > zero; // σ = +1 in these lanes
+      lo[h4] += up ? negative : -positive;
+      hi[h4] += up ? positive : -negative;
+    }
+  }
+}
 }
 
 namespace
@@ -514,20 +538,7 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
   }
   if (octants)
   {
-    for (int c = 0; c < 8; ++c)
-    {
-      if (!((classes >> c) & 1u))
-      {
-        continue;
-      }
-      const V4 negative = zero + classLo[c], positive = zero + classHi[c];
-      for (int h4 = 0; h4 < 2; ++h4)
-      {
-        const auto up = OctantSigns[c][h4] > zero; // σ = +1 in these lanes
-        octLo[h4] += up ? negative : -positive;
-        octHi[h4] += up ? positive : -negative;
-      }
-    }
+    AddClassSums(classLo, classHi, classes, octLo, octHi);
   }
   for (int o = 0; o < 8; ++o)
   {
@@ -574,20 +585,7 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
         }
       }
     }
-    for (int c = 0; c < 8; ++c)
-    {
-      if (!((dClasses >> c) & 1u))
-      {
-        continue;
-      }
-      const V4 negative = zero + dClassLo[c], positive = zero + dClassHi[c];
-      for (int h4 = 0; h4 < 2; ++h4)
-      {
-        const auto up = OctantSigns[c][h4] > zero; // σ = +1 in these lanes
-        dLo[h4] += up ? negative : -positive;
-        dHi[h4] += up ? positive : -negative;
-      }
-    }
+    AddClassSums(dClassLo, dClassHi, dClasses, dLo, dHi);
     const double slack = double(n) * n * rounding + 1e-12 * terms;
     for (int o = 0; o < 8; ++o)
     {
