@@ -1495,6 +1495,17 @@ struct Contour
       }
       if (this->Pass == Edges)
       {
+        // The next block's values, long evicted since the sampling: fetched while this
+        // block's edges are read (their loads were the pass's main stall).
+        if (s + 1 < end)
+        {
+          const char* next = reinterpret_cast<const char*>(v + BlockPoints * BlockPoints * BlockPoints);
+          for (size_t byte = 0; byte < sizeof(double) * BlockPoints * BlockPoints * BlockPoints;
+               byte += 64)
+          {
+            __builtin_prefetch(next + byte);
+          }
+        }
         vtkIdType vertex = (*this->VertexCount)[s];
         for (int axis = 0; axis < 3; ++axis)
           for (int lk = 0; lk < BlockCells; ++lk)
