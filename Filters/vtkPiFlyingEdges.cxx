@@ -1825,12 +1825,11 @@ struct VertexAttributes
       ++axis;
     }
     const pisurf::ProductKernel* kernel = this->Kernel->Field ? nullptr : this->Kernel->Kernel;
+    const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
     if (row && kernel && !compressed && ((va < 0 && vb > 0) || (va > 0 && vb < 0)))
     {
       // An x edge: Newton's method on the row's restriction, already made for the
       // sampling (a product kernel has no outer-side test: its root is the answer).
-      const double length =
-        std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
       const double root = RowNewton(kernel, row, rowT0, t, va,
         1e-12 * std::max(std::fabs(va), std::fabs(vb)), this->Tolerance / length);
       if (root >= 0.0)
@@ -1865,7 +1864,6 @@ struct VertexAttributes
       pointAt(s, x);
       return this->Kernel->OffOuterSide(x);
     };
-    const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
     // The root between s0 and s1 (either order), where F is f0 and f1 of opposite signs.
     auto rootBetween = [&](double s0, double f0, double s1, double f1) {
       const double lo = std::min(s0, s1), hi = std::max(s0, s1);
@@ -2265,6 +2263,28 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       groups[a] = (g.Count[a] + group - 1) / group;
     }
     const vtkIdType groupCount = vtkIdType(groups[0]) * groups[1] * groups[2];
+    // The blocks [lo, hi) take `sign`.
+    auto setSigns = [&g](const int lo[3], const int hi[3], int sign) {
+      for (int z = lo[2]; z < hi[2]; ++z)
+        for (int y = lo[1]; y < hi[1]; ++y)
+          for (int x = lo[0]; x < hi[0]; ++x)
+          {
+            g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(sign);
+          }
+    };
+    // Whether `inner` lies within octant o of `outer` (as OctantBox cuts it).
+    auto insideOctant = [](const double inner[6], const double outer[6], int o) {
+      double octant[6];
+      pisurf::OctantBox(outer, o, octant);
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!(inner[2 * a] >= octant[2 * a] && inner[2 * a + 1] <= octant[2 * a + 1]))
+        {
+          return false;
+        }
+      }
+      return true;
+    };
     vtkSMPTools::For(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType q = begin; q < end; ++q)
       {
@@ -2288,12 +2308,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
         const int sign = octantsToo
           ? evaluator.Kernel->ClassifyBoxAndOctants(box, groupOctants, true)
           : evaluator.ClassifyBox(box);
-        for (int z = lo[2]; z < hi[2]; ++z)
-          for (int y = lo[1]; y < hi[1]; ++y)
-            for (int x = lo[0]; x < hi[0]; ++x)
-            {
-              g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(sign == 0 ? 2 : sign);
-            }
+        setSigns(lo, hi, sign == 0 ? 2 : sign);
         if (sign != 0)
         {
           continue;
@@ -2316,64 +2331,46 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
           {
             continue;
           }
-          if (octantsToo && groupOctants[o] != 0)
+          if (octantsToo && groupOctants[o] != 0 && insideOctant(sub, box, o))
           {
-            double octant[6];
-            pisurf::OctantBox(box, o, octant);
-            bool inside = true;
-            for (int a = 0; a < 3; ++a)
-            {
-              inside = inside && sub[2 * a] >= octant[2 * a] && sub[2 * a + 1] <= octant[2 * a + 1];
-            }
-            if (inside)
-            {
-              for (int z = sublo[2]; z < subhi[2]; ++z)
-                for (int y = sublo[1]; y < subhi[1]; ++y)
-                  for (int x = sublo[0]; x < subhi[0]; ++x)
-                  {
-                    g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(groupOctants[o]);
-                  }
-              continue;
-            }
+            setSigns(sublo, subhi, groupOctants[o]);
+            continue;
           }
-          // (Likewise the sub-group's octants: an octant that holds exactly one block
-          // decides that block, which then skips its own classification below.)
           int subOctants[8];
           const int subSign = octantsToo
             ? evaluator.Kernel->ClassifyBoxAndOctants(sub, subOctants, true)
             : evaluator.ClassifyBox(sub);
-          if (subSign == 0 && octantsToo)
+          if (subSign != 0)
           {
-            for (int so = 0; so < 8; ++so)
-            {
-              int bc[3];
-              bool inside = subOctants[so] != 0;
-              double octant[6];
-              pisurf::OctantBox(sub, so, octant);
-              for (int a = 0; a < 3 && inside; ++a)
-              {
-                bc[a] = sublo[a] + ((so >> a) & 1);
-                // The block's box as ClassifyBlocks forms it, within the octant's.
-                inside = bc[a] < subhi[a] &&
-                  g.Origin[a] + g.First(bc, a) * g.Spacing[a] >= octant[2 * a] &&
-                  g.Origin[a] + g.Last(bc, a) * g.Spacing[a] <= octant[2 * a + 1];
-              }
-              if (inside)
-              {
-                g.Sign[g.BlockId(bc[0], bc[1], bc[2])] = static_cast<signed char>(subOctants[so]);
-              }
-            }
-          }
-          if (subSign == 0)
-          {
+            setSigns(sublo, subhi, subSign);
             continue;
           }
-          for (int z = sublo[2]; z < subhi[2]; ++z)
-            for (int y = sublo[1]; y < subhi[1]; ++y)
-              for (int x = sublo[0]; x < subhi[0]; ++x)
-              {
-                g.Sign[g.BlockId(x, y, z)] = static_cast<signed char>(subSign);
-              }
+          // (Likewise the sub-group's octants: an octant that holds exactly one block
+          // decides that block, which then skips its own classification below.)
+          for (int so = 0; octantsToo && so < 8; ++so)
+          {
+            int bc[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              bc[a] = sublo[a] + ((so >> a) & 1);
+            }
+            if (subOctants[so] == 0 || bc[0] >= subhi[0] || bc[1] >= subhi[1] ||
+              bc[2] >= subhi[2])
+            {
+              continue;
+            }
+            // The block's box as ClassifyBlocks forms it.
+            double block[6];
+            for (int a = 0; a < 3; ++a)
+            {
+              block[2 * a] = g.Origin[a] + g.First(bc, a) * g.Spacing[a];
+              block[2 * a + 1] = g.Origin[a] + g.Last(bc, a) * g.Spacing[a];
+            }
+            if (insideOctant(block, sub, so))
+            {
+              g.Sign[g.BlockId(bc[0], bc[1], bc[2])] = static_cast<signed char>(subOctants[so]);
+            }
+          }
         }
       }
     });

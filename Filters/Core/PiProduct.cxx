@@ -368,6 +368,40 @@ void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, doub
   logSlope = slope;
 }
 
+// One factor of EvaluateOnAxisWithSlope / EvaluateRestrictedWithSlope: the univariate
+// polynomial c (n coefficients) and its derivative at u, the derivative scaled to the
+// caller's parameter by `scale`, multiplied into product and derivative (product rule);
+// false where the factor is beyond `bound` or below `inverse` = 1 / bound (0 allowed).
+static inline bool MultiplyWithSlope(const double* c, int n, double u, double scale,
+  double bound, double inverse, double& product, double& derivative)
+{
+  double v, d;
+  if (n == 3)
+  {
+    // A quadric (most factors): EvaluateUnivariateWithDerivative's operations, unrolled.
+    const double v1 = c[2] * u + c[1];
+    d = c[2] * u + v1;
+    v = v1 * u + c[0];
+  }
+  else if (n == 5)
+  {
+    // A quartic (tori): the loop unrolled, the same operations.
+    v = EvaluateUnivariateWithDerivative(c, 5, u, d);
+  }
+  else
+  {
+    v = EvaluateUnivariateWithDerivative(c, n, u, d);
+  }
+  const double a = std::fabs(v);
+  if (a > bound || (a != 0.0 && a < inverse))
+  {
+    return false;
+  }
+  derivative = derivative * v + product * d * scale;
+  product *= v;
+  return true;
+}
+
 PISURF_AVX2_CLONES
 bool ProductKernel::EvaluateOnAxisWithSlope(
   const double* coefficients, int axis, double x, double& value, double& slope) const
@@ -376,24 +410,18 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
   double product = 1.0, derivative = 0.0;
   if (this->QuadricStride > 0)
   {
-    // The n == 3 branch below, with each factor's frame read from the packed rows
-    // instead of its Factor.
+    // The loop below, with each factor's frame read from the packed rows instead of
+    // its Factor.
     const size_t stride = this->QuadricStride, count = this->Factors.size();
     const double* scale = this->QuadricRows.data() + axis * stride;
     const double* shift = this->QuadricRows.data() + (3 + axis) * stride;
     for (size_t k = 0; k < count; ++k, coefficients += 3)
     {
-      const double u = scale[k] * x + shift[k];
-      const double v1 = coefficients[2] * u + coefficients[1];
-      const double d = coefficients[2] * u + v1;
-      const double v = v1 * u + coefficients[0];
-      const double a = std::fabs(v);
-      if (a > bound || (a != 0.0 && a < inverse))
+      if (!MultiplyWithSlope(
+            coefficients, 3, scale[k] * x + shift[k], scale[k], bound, inverse, product, derivative))
       {
         return false;
       }
-      derivative = derivative * v + product * d * scale[k];
-      product *= v;
     }
     value = product - this->Blending;
     slope = derivative;
@@ -403,31 +431,11 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
   {
     const PolynomialFactor& pf = f.Polynomial;
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
-    const double u = pf.A[axis][axis] * x + pf.B[axis];
-    double v = 0.0, d = 0.0;
-    if (n == 3)
-    {
-      // A quadric (most factors): the loop's operations, unrolled.
-      const double v1 = coefficients[2] * u + coefficients[1];
-      d = coefficients[2] * u + v1;
-      v = v1 * u + coefficients[0];
-    }
-    else if (n == 5)
-    {
-      // A quartic (tori): the loop unrolled, the same operations.
-      v = EvaluateUnivariateWithDerivative(coefficients, 5, u, d);
-    }
-    else
-    {
-      v = EvaluateUnivariateWithDerivative(coefficients, n, u, d);
-    }
-    const double a = std::fabs(v);
-    if (a > bound || (a != 0.0 && a < inverse))
+    if (!MultiplyWithSlope(coefficients, n, pf.A[axis][axis] * x + pf.B[axis],
+          pf.A[axis][axis], bound, inverse, product, derivative))
     {
       return false;
     }
-    derivative = derivative * v + product * d * pf.A[axis][axis];
-    product *= v;
     coefficients += n;
   }
   value = product - this->Blending;
@@ -447,25 +455,10 @@ bool ProductKernel::EvaluateRestrictedWithSlope(
   for (const Factor& f : this->Factors)
   {
     const int n = std::max(f.Polynomial.Poly.GetDegree(), 0) + 1;
-    double v, d;
-    if (n == 3)
-    {
-      // (EvaluateUnivariateWithDerivative's operations, unrolled)
-      const double v1 = coefficients[2] * t + coefficients[1];
-      d = coefficients[2] * t + v1;
-      v = v1 * t + coefficients[0];
-    }
-    else
-    {
-      v = EvaluateUnivariateWithDerivative(coefficients, n, t, d);
-    }
-    const double a = std::fabs(v);
-    if (a > bound || (a != 0.0 && a < inverse))
+    if (!MultiplyWithSlope(coefficients, n, t, 1.0, bound, inverse, product, derivative))
     {
       return false;
     }
-    derivative = derivative * v + product * d;
-    product *= v;
     coefficients += n;
   }
   value = product - this->Blending;
