@@ -19,9 +19,6 @@
 #include <type_traits>
 #include <utility>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace pisurf
 {
@@ -33,29 +30,24 @@ namespace pisurf
 /// vtkPiSampleFunction's time at 256³, and a few megabytes of mesh arrays, a tenth of
 /// vtkPiFlyingEdges'. With huge pages that is one fault per 2 MiB. Only a hint: where
 /// the kernel declines, or elsewhere than Linux, this is plain aligned memory.
-/// Release with std::free. nullptr if out of memory.
-inline void* AllocateLarge(std::size_t bytes)
-{
-  constexpr std::size_t Huge = std::size_t(1) << 21;
-  if (bytes < Huge / 4)
-  {
-    return std::malloc(bytes > 0 ? bytes : 1);
-  }
-#if defined(__unix__) || defined(__APPLE__)
-  const std::size_t rounded = (bytes + Huge - 1) & ~(Huge - 1);
-  void* data = nullptr;
-  if (::posix_memalign(&data, Huge, rounded) != 0)
-  {
-    return nullptr;
-  }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  ::madvise(data, rounded, MADV_HUGEPAGE);
-#endif
-  return data;
-#else
-  return std::malloc(bytes);
-#endif
-}
+///
+/// Even in huge pages the kernel still zeroes every fresh page (about a tenth of a
+/// second per 100 MB here: an all-hits cast's output). So large blocks given back with
+/// ReleaseLarge are kept, up to LargeCacheBytes in all (oldest dropped first), and a
+/// later request of the same size class (at most twice the rounded size) takes one of
+/// them back, already faulted in: the next execution of a filter reuses its previous
+/// output's memory once downstream has let it go, as vtkImageData::AllocateScalars
+/// reuses an unshared array of the right size.
+/// Release with ReleaseLarge (std::free would do, but loses the block). nullptr if out of
+/// memory.
+void* AllocateLarge(std::size_t bytes);
+/// Gives back a block of AllocateLarge (or any malloc'ed block, which is freed).
+/// Thread-safe; the block's contents are kept as they are.
+void ReleaseLarge(void* data);
+/// The most idle memory ReleaseLarge keeps (256 MiB).
+constexpr std::size_t LargeCacheBytes = std::size_t(256) << 20;
+/// The idle memory ReleaseLarge keeps now (for tests).
+std::size_t KeptLargeBytes();
 
 /// An uninitialized array of n plain values (T trivial, as the work arrays are) in
 /// AllocateLarge's memory.
@@ -83,7 +75,7 @@ public:
       this->Allocate(n);
     }
   }
-  /// Frees the memory.
+  /// Gives the memory back (ReleaseLarge).
   void Release()
   {
     this->Data.reset();
@@ -98,7 +90,7 @@ public:
 private:
   struct Free
   {
-    void operator()(T* p) const { std::free(p); }
+    void operator()(T* p) const { ReleaseLarge(p); }
   };
   std::unique_ptr<T, Free> Data;
   std::size_t Size = 0;

@@ -6,7 +6,8 @@
  * Output arrays that a filter fills completely right after allocating them (a sampled
  * grid, a mesh's points, normals and cells): in huge pages from 512 KiB on, so that
  * filling them does not fault every 4 KiB page in (see pisurf::AllocateLarge). The
- * array owns the memory and releases it with free(), as VTK does its own.
+ * array owns the memory and gives it back with pisurf::ReleaseLarge, which keeps it for
+ * the next execution's arrays (up to pisurf::LargeCacheBytes of idle memory).
  */
 #ifndef PiLargeArrays_h
 #define PiLargeArrays_h
@@ -33,7 +34,9 @@ void PiAllocateLarge(ArrayT* array, vtkIdType tuples)
     array->SetNumberOfTuples(tuples);
     return;
   }
-  array->SetArray(static_cast<Value*>(data), values, 0, ArrayT::VTK_DATA_ARRAY_FREE);
+  // Given back through pisurf::ReleaseLarge (kept for a later execution, see there).
+  array->SetArray(static_cast<Value*>(data), values, 0, ArrayT::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(&pisurf::ReleaseLarge);
 }
 
 /// Gives `points` `count` uninitialized double-precision points in that memory.

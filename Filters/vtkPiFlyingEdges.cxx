@@ -1672,50 +1672,91 @@ struct VertexAttributes
       t, va, small, width);
   }
 
-  // Newton's loop for both: `evaluate(s, F, dF/ds)`, false where it cannot.
-  template <typename Evaluate>
-  static double NewtonOn(Evaluate&& evaluate, double t, double va, double small, double width)
+  // Newton's method as a state: Step takes F and dF/ds at S (ok false where they cannot
+  // be had) and either moves S or finishes with Result (−1: the plain product cannot be
+  // used). NewtonOn runs one; the vertex loop runs two side by side (NewtonPair), whose
+  // chains of dependent operations then overlap.
+  struct NewtonLane
   {
-    double lo = 0.0, hi = 1.0, s = std::max(0.0, std::min(1.0, t));
-    double last = 0.0; // the last Newton step (0: none, or a bisection)
-    for (int it = 0; it < 60; ++it)
+    NewtonLane(double t, double va, double small, double width)
+      : Va(va)
+      , Small(small)
+      , Width(width)
+      , S(std::max(0.0, std::min(1.0, t)))
     {
-      double v, slope;
-      if (!evaluate(s, v, slope))
+    }
+    void Step(bool ok, double v, double slope)
+    {
+      if (!ok)
       {
-        return -1.0;
+        this->Finish(-1.0);
+        return;
       }
-      if (std::fabs(v) <= small)
+      if (std::fabs(v) <= this->Small)
       {
-        return s;
+        this->Finish(this->S);
+        return;
       }
-      ((v < 0) == (va < 0) ? lo : hi) = s;
-      if (hi - lo <= width)
+      ((v < 0) == (this->Va < 0) ? this->Lo : this->Hi) = this->S;
+      if (this->Hi - this->Lo <= this->Width)
       {
-        return 0.5 * (lo + hi);
+        this->Finish(0.5 * (this->Lo + this->Hi));
+        return;
       }
-      double next = s - v / slope;
-      const bool newton = next > lo && next < hi;
+      double next = this->S - v / slope;
+      const bool newton = next > this->Lo && next < this->Hi;
       if (!newton)
       {
-        next = 0.5 * (lo + hi);
+        next = 0.5 * (this->Lo + this->Hi);
       }
-      const double step = std::fabs(next - s);
-      s = next;
-      if (step <= width)
+      const double step = std::fabs(next - this->S);
+      this->S = next;
+      if (step <= this->Width)
       {
-        return s;
+        this->Finish(this->S);
+        return;
       }
       // Converging quadratically (this step at most a quarter of the last): the error
       // after it is about C·step² with C ≈ step / last², so when step³ / last² is below
       // a sixteenth of the width the next evaluation would only confirm it.
-      if (newton && last > 0.0 && step <= 0.25 * last && step * step * step <= width * last * last / 16)
+      const double last = this->Last;
+      if (newton && last > 0.0 && step <= 0.25 * last &&
+        step * step * step <= this->Width * last * last / 16)
       {
-        return s;
+        this->Finish(this->S);
+        return;
       }
-      last = newton ? step : 0.0;
+      this->Last = newton ? step : 0.0;
+      if (++this->Iterations >= 60)
+      {
+        this->Finish(this->S);
+      }
     }
-    return s;
+    void Finish(double result)
+    {
+      this->Result = result;
+      this->Done = true;
+    }
+    double Va, Small, Width;
+    double Lo = 0.0, Hi = 1.0, S;
+    double Last = 0.0; // the last Newton step (0: none, or a bisection)
+    int Iterations = 0;
+    bool Done = false;
+    double Result = -1.0;
+  };
+
+  // Newton's loop for both: `evaluate(s, F, dF/ds)`, false where it cannot.
+  template <typename Evaluate>
+  static double NewtonOn(Evaluate&& evaluate, double t, double va, double small, double width)
+  {
+    NewtonLane lane(t, va, small, width);
+    while (!lane.Done)
+    {
+      double v, slope;
+      const bool ok = evaluate(lane.S, v, slope);
+      lane.Step(ok, v, slope);
+    }
+    return lane.Result;
   }
 
   // The same for products whose F leaves the double range (thousands of factors, or F
@@ -1974,6 +2015,255 @@ struct VertexAttributes
     return root;
   }
 
+  // One vertex's edge: its ends a and b (from the edge key), the grid's values there and
+  // the linear interpolation t.
+  struct Edge
+  {
+    double A[3], B[3];
+    int Axis, Index[3];
+    double T, Va, Vb;
+  };
+
+  void Decode(vtkIdType id, bool narrow, Edge& e) const
+  {
+    const int* d = this->G->Dims;
+    const vtkIdType key = (*this->VertexEdge)[id];
+    if (narrow)
+    {
+      const std::uint32_t k32 = static_cast<std::uint32_t>(key);
+      std::uint32_t p = k32 / 3;
+      e.Axis = static_cast<int>(k32 - 3 * p);
+      const std::uint32_t row = p / static_cast<std::uint32_t>(d[0]);
+      e.Index[0] = static_cast<int>(p - row * static_cast<std::uint32_t>(d[0]));
+      const std::uint32_t plane = row / static_cast<std::uint32_t>(d[1]);
+      e.Index[1] = static_cast<int>(row - plane * static_cast<std::uint32_t>(d[1]));
+      e.Index[2] = static_cast<int>(plane);
+    }
+    else
+    {
+      e.Axis = static_cast<int>(key % 3);
+      const vtkIdType p = key / 3;
+      e.Index[0] = static_cast<int>(p % d[0]);
+      e.Index[1] = static_cast<int>((p / d[0]) % d[1]);
+      e.Index[2] = static_cast<int>(p / (vtkIdType(d[0]) * d[1]));
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      e.A[k] = this->G->Origin[k] + e.Index[k] * this->G->Spacing[k];
+      e.B[k] = e.A[k] + (k == e.Axis ? this->G->Spacing[k] : 0.0);
+    }
+    e.T = (*this->VertexT)[id];
+    e.Va = (*this->VertexEnds)[2 * id];
+    e.Vb = (*this->VertexEnds)[2 * id + 1];
+  }
+
+  // An x edge's row restriction from the sampling, or null (rowT0: the edge's start on it).
+  const double* RowOf(const Edge& e, double& rowT0) const
+  {
+    rowT0 = 0.0;
+    if (e.Axis != 0 || !this->RowIndex || !this->RowCoefficients || this->RowCoefficients->empty())
+    {
+      return nullptr;
+    }
+    const int* d = this->G->Dims;
+    const vtkIdType r = (*this->RowIndex)[vtkIdType(e.Index[2]) * d[1] + e.Index[1]];
+    if (r < 0)
+    {
+      return nullptr;
+    }
+    rowT0 = e.Index[0] - 0.5 * (d[0] - 1);
+    return this->RowCoefficients->data() + r * this->RowCoefficientCount;
+  }
+
+  // Refine's usual case for a product kernel, set up to run beside another vertex's: a
+  // strict bracket of plain values, Newton's method on the row's restriction (an x
+  // edge) or on the factors restricted to the edge's line. Where Newton cannot decide
+  // (−1), Refine takes the vertex from the start (the same steps, then its fallbacks).
+  static constexpr int MaxLanes = 4;
+  struct Lane
+  {
+    Edge E;
+    const double* Row = nullptr;
+    double RowT0 = 0.0;
+    double Line[256]; // RestrictToAxis's coefficients, for the other edges
+    double X0 = 0.0, Dx = 0.0;
+    NewtonLane Newton{ 0.0, 0.0, 0.0, 0.0 };
+    vtkIdType Id = 0;
+  };
+
+  // Sets `lane` up for the vertex whose edge is e; false where Refine's usual case does
+  // not apply (the caller then takes the general path).
+  bool Prepare(const Edge& e, Lane& lane) const
+  {
+    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    const bool bracket = (e.Va < 0 && e.Vb > 0) || (e.Va > 0 && e.Vb < 0);
+    if (!this->Project || this->Kernel->Field || !kernel || !bracket ||
+      !(std::fabs(e.Va) < 1e200 && std::fabs(e.Vb) < 1e200))
+    {
+      return false;
+    }
+    int axis = 0;
+    while (axis < 2 && e.A[axis] == e.B[axis])
+    {
+      ++axis;
+    }
+    lane.Row = this->RowOf(e, lane.RowT0);
+    if (!lane.Row)
+    {
+      if (kernel->GetLineCoefficientCount() > sizeof(lane.Line) / sizeof(double) ||
+        !kernel->RestrictToAxis(e.A, axis, lane.Line))
+      {
+        return false;
+      }
+    }
+    lane.E = e;
+    lane.E.Axis = axis;
+    lane.X0 = e.A[axis];
+    lane.Dx = e.B[axis] - e.A[axis];
+    const double length =
+      std::fabs(e.B[0] - e.A[0]) + std::fabs(e.B[1] - e.A[1]) + std::fabs(e.B[2] - e.A[2]);
+    lane.Newton = NewtonLane(
+      e.T, e.Va, 1e-12 * std::max(std::fabs(e.Va), std::fabs(e.Vb)), this->Tolerance / length);
+    return true;
+  }
+
+  // F and dF/ds at the lane's s: RowNewton's and Newton's evaluations.
+  bool EvaluateLane(const Lane& lane, double& v, double& slope) const
+  {
+    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    const double s = lane.Newton.S;
+    if (lane.Row)
+    {
+      return kernel->EvaluateRestrictedWithSlope(lane.Row, lane.RowT0 + s, v, slope);
+    }
+    const bool ok =
+      kernel->EvaluateOnAxisWithSlope(lane.Line, lane.E.Axis, lane.X0 + s * lane.Dx, v, slope);
+    slope *= lane.Dx;
+    return ok;
+  }
+
+  // Newton's method on several lanes at once (each lane's own steps, interleaved): the
+  // evaluations of all unfinished lanes, then their steps.
+  void NewtonLanes(Lane* lanes, int count) const
+  {
+    for (;;)
+    {
+      double v[MaxLanes], slope[MaxLanes];
+      bool ok[MaxLanes];
+      bool any = false;
+      for (int k = 0; k < count; ++k)
+      {
+        if (!lanes[k].Newton.Done)
+        {
+          ok[k] = this->EvaluateLane(lanes[k], v[k], slope[k]);
+          any = true;
+        }
+      }
+      if (!any)
+      {
+        return;
+      }
+      for (int k = 0; k < count; ++k)
+      {
+        if (!lanes[k].Newton.Done)
+        {
+          lanes[k].Newton.Step(ok[k], v[k], slope[k]);
+        }
+      }
+    }
+  }
+
+  // Output arrays, for Write.
+  struct Outputs
+  {
+    double* Xyz;
+    float* Normals;
+    int* Factors;
+    double* Magnitudes; // may be null
+  };
+
+  // The vertex at x: the exact normal, |∇F| and the nearest factor there, written out.
+  void Finish(vtkIdType id, const double x[3], const Outputs& out) const
+  {
+    double n[3], gradientNorm;
+    int nearest;
+    this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
+    this->Write(id, x, n, gradientNorm, nearest, out);
+  }
+
+  static void Write(vtkIdType id, const double x[3], const double n[3], double gradientNorm,
+    int nearest, const Outputs& out)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      out.Xyz[3 * id + k] = x[k];
+      out.Normals[3 * id + k] = static_cast<float>(n[k]);
+    }
+    out.Factors[id] = nearest;
+    if (out.Magnitudes)
+    {
+      out.Magnitudes[id] = gradientNorm;
+    }
+  }
+
+  // Every other vertex: a field's one-pass edge (RefineEdge), or Refine's general path.
+  void General(vtkIdType id, const Edge& e, const Outputs& out) const
+  {
+    const double va = e.Va, vb = e.Vb;
+    double t = e.T;
+    // The field restricted to the edge, in one call: Refine's root of a strict bracket,
+    // or the crossing nearest the end t where the ends have one sign (a thin wall),
+    // and EvaluateVertex's answers there. A root off the outer side takes the general
+    // path below, which looks for the outer sheet.
+    const bool bracket = (va < 0 && vb > 0) || (va > 0 && vb < 0);
+    const bool thinWall = ((va > 0 && vb > 0) || (va < 0 && vb < 0)) && (t == 0.0 || t == 1.0);
+    pisurf::Field::EdgeVertex fast;
+    double x[3];
+    if (this->Project && this->Kernel->Field && (bracket || thinWall) &&
+      std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
+      this->Kernel->Field->RefineEdge(
+        e.A, e.B, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
+      !(this->PositiveEnvelope && fast.OffOuterSide))
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        x[k] = e.A[k] + fast.S * (e.B[k] - e.A[k]);
+      }
+      this->Write(id, x, fast.Normal, fast.GradientNorm, fast.Nearest, out);
+      return;
+    }
+    if (this->Project)
+    {
+      double rowT0;
+      const double* row = this->RowOf(e, rowT0);
+      t = this->Refine(e.A, e.B, t, va, vb, row, rowT0);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] = e.A[k] + t * (e.B[k] - e.A[k]);
+    }
+    this->Finish(id, x, out);
+  }
+
+  // A lane's vertex once its Newton has finished.
+  void FinishLane(const Lane& lane, const Outputs& out) const
+  {
+    const Edge& e = lane.E;
+    double t = lane.Newton.Result;
+    if (t < 0.0)
+    {
+      double rowT0;
+      const double* row = this->RowOf(e, rowT0);
+      t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, row, rowT0);
+    }
+    double x[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] = e.A[k] + t * (e.B[k] - e.A[k]);
+    }
+    this->Finish(lane.Id, x, out);
+  }
+
   void operator()(vtkIdType begin, vtkIdType end)
   {
     if (vtkSMPTools::GetSingleThread())
@@ -1997,97 +2287,39 @@ struct VertexAttributes
     // Edge keys of grids below 2^32 keys decode with 32-bit divisions (several times
     // faster than 64-bit ones on common CPUs).
     const bool narrow = 3.0 * d[0] * d[1] * d[2] < 4294967296.0;
-    double* xyz = vtkDoubleArray::FastDownCast(this->Points->GetData())->GetPointer(0);
-    float* normals = this->Normals->GetPointer(0);
-    int* factors = this->Factor->GetPointer(0);
-    double* magnitudes = this->GradientMagnitude ? this->GradientMagnitude->GetPointer(0) : nullptr;
+    const Outputs out{ vtkDoubleArray::FastDownCast(this->Points->GetData())->GetPointer(0),
+      this->Normals->GetPointer(0), this->Factor->GetPointer(0),
+      this->GradientMagnitude ? this->GradientMagnitude->GetPointer(0) : nullptr };
+    // Vertices MaxLanes at a time where they take Refine's usual case (their Newton
+    // chains side by side); any other vertex takes the general path at once.
+    Lane lanes[MaxLanes];
+    int ready = 0;
     for (vtkIdType id = begin; id < end; ++id)
     {
-      const vtkIdType key = (*this->VertexEdge)[id];
-      int axis, idx[3];
-      if (narrow)
+      Edge e;
+      this->Decode(id, narrow, e);
+      if (!this->Prepare(e, lanes[ready]))
       {
-        const std::uint32_t k32 = static_cast<std::uint32_t>(key);
-        std::uint32_t p = k32 / 3;
-        axis = static_cast<int>(k32 - 3 * p);
-        const std::uint32_t row = p / static_cast<std::uint32_t>(d[0]);
-        idx[0] = static_cast<int>(p - row * static_cast<std::uint32_t>(d[0]));
-        const std::uint32_t plane = row / static_cast<std::uint32_t>(d[1]);
-        idx[1] = static_cast<int>(row - plane * static_cast<std::uint32_t>(d[1]));
-        idx[2] = static_cast<int>(plane);
+        this->General(id, e, out);
+        continue;
       }
-      else
+      lanes[ready].Id = id;
+      if (++ready == MaxLanes || id + 1 == end)
       {
-        axis = static_cast<int>(key % 3);
-        const vtkIdType p = key / 3;
-        idx[0] = static_cast<int>(p % d[0]);
-        idx[1] = static_cast<int>((p / d[0]) % d[1]);
-        idx[2] = static_cast<int>(p / (vtkIdType(d[0]) * d[1]));
-      }
-      double a[3], b[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        a[k] = this->G->Origin[k] + idx[k] * this->G->Spacing[k];
-        b[k] = a[k] + (k == axis ? this->G->Spacing[k] : 0.0);
-      }
-      double t = (*this->VertexT)[id];
-      const double va = (*this->VertexEnds)[2 * id], vb = (*this->VertexEnds)[2 * id + 1];
-      double x[3], n[3], gradientNorm;
-      int nearest;
-      // The field restricted to the edge, in one call: Refine's root of a strict bracket,
-      // or the crossing nearest the end t where the ends have one sign (a thin wall),
-      // and EvaluateVertex's answers there. A root off the outer side takes the general
-      // path below, which looks for the outer sheet.
-      const bool bracket = (va < 0 && vb > 0) || (va > 0 && vb < 0);
-      const bool thinWall = ((va > 0 && vb > 0) || (va < 0 && vb < 0)) && (t == 0.0 || t == 1.0);
-      pisurf::Field::EdgeVertex fast;
-      if (this->Project && this->Kernel->Field && (bracket || thinWall) &&
-        std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
-        this->Kernel->Field->RefineEdge(
-          a, b, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
-        !(this->PositiveEnvelope && fast.OffOuterSide))
-      {
-        for (int k = 0; k < 3; ++k)
+        this->NewtonLanes(lanes, ready);
+        for (int k = 0; k < ready; ++k)
         {
-          x[k] = a[k] + fast.S * (b[k] - a[k]);
-          n[k] = fast.Normal[k];
+          this->FinishLane(lanes[k], out);
         }
-        gradientNorm = fast.GradientNorm;
-        nearest = fast.Nearest;
+        ready = 0;
       }
-      else
+    }
+    if (ready > 0)
+    {
+      this->NewtonLanes(lanes, ready);
+      for (int k = 0; k < ready; ++k)
       {
-        if (this->Project)
-        {
-          const double* row = nullptr;
-          double rowT0 = 0.0;
-          if (axis == 0 && this->RowIndex && this->RowCoefficients &&
-            !this->RowCoefficients->empty())
-          {
-            const vtkIdType r = (*this->RowIndex)[vtkIdType(idx[2]) * d[1] + idx[1]];
-            if (r >= 0)
-            {
-              row = this->RowCoefficients->data() + r * this->RowCoefficientCount;
-              rowT0 = idx[0] - 0.5 * (d[0] - 1);
-            }
-          }
-          t = this->Refine(a, b, t, va, vb, row, rowT0);
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-          x[k] = a[k] + t * (b[k] - a[k]);
-        }
-        this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        xyz[3 * id + k] = x[k];
-        normals[3 * id + k] = static_cast<float>(n[k]);
-      }
-      factors[id] = nearest;
-      if (magnitudes)
-      {
-        magnitudes[id] = gradientNorm;
+        this->FinishLane(lanes[k], out);
       }
     }
   }
