@@ -2079,7 +2079,7 @@ struct VertexAttributes
   // strict bracket of plain values, Newton's method on the row's restriction (an x
   // edge) or on the factors restricted to the edge's line. Where Newton cannot decide
   // (−1), Refine takes the vertex from the start (the same steps, then its fallbacks).
-  static constexpr int MaxLanes = 4;
+  static constexpr int MaxLanes = pisurf::ProductKernel::MaxVertices;
   struct Lane
   {
     Edge E;
@@ -2245,23 +2245,33 @@ struct VertexAttributes
     this->Finish(id, x, out);
   }
 
-  // A lane's vertex once its Newton has finished.
-  void FinishLane(const Lane& lane, const Outputs& out) const
+  // The lanes' vertices once their Newton has finished: each root (Refine's general path
+  // where Newton could not decide), then the attributes there, all lanes at once.
+  void FinishLanes(const Lane* lanes, int count, const Outputs& out) const
   {
-    const Edge& e = lane.E;
-    double t = lane.Newton.Result;
-    if (t < 0.0)
+    double x[MaxLanes][3], n[MaxLanes][3], gradientNorm[MaxLanes];
+    int nearest[MaxLanes];
+    for (int j = 0; j < count; ++j)
     {
-      double rowT0;
-      const double* row = this->RowOf(e, rowT0);
-      t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, row, rowT0);
+      const Edge& e = lanes[j].E;
+      double t = lanes[j].Newton.Result;
+      if (t < 0.0)
+      {
+        double rowT0;
+        const double* row = this->RowOf(e, rowT0);
+        t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, row, rowT0);
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        x[j][k] = e.A[k] + t * (e.B[k] - e.A[k]);
+      }
     }
-    double x[3];
-    for (int k = 0; k < 3; ++k)
+    // (Lanes exist only for a product kernel.)
+    this->Kernel->Kernel->EvaluateVertices(count, x, n, gradientNorm, nearest);
+    for (int j = 0; j < count; ++j)
     {
-      x[k] = e.A[k] + t * (e.B[k] - e.A[k]);
+      this->Write(lanes[j].Id, x[j], n[j], gradientNorm[j], nearest[j], out);
     }
-    this->Finish(lane.Id, x, out);
   }
 
   void operator()(vtkIdType begin, vtkIdType end)
@@ -2307,20 +2317,14 @@ struct VertexAttributes
       if (++ready == MaxLanes || id + 1 == end)
       {
         this->NewtonLanes(lanes, ready);
-        for (int k = 0; k < ready; ++k)
-        {
-          this->FinishLane(lanes[k], out);
-        }
+        this->FinishLanes(lanes, ready, out);
         ready = 0;
       }
     }
     if (ready > 0)
     {
       this->NewtonLanes(lanes, ready);
-      for (int k = 0; k < ready; ++k)
-      {
-        this->FinishLane(lanes[k], out);
-      }
+      this->FinishLanes(lanes, ready, out);
     }
   }
 };

@@ -801,23 +801,29 @@ static void FinishVertex(
   }
 }
 
-PISURF_AVX2_CLONES
-bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
+// PlainVertexFactors' test on the values and gradients of `count` factors: every value
+// non-zero, Π min(1, |f_k|) >= 2^-250 and Π max(1, |f_k|, |∇f_k|∞) <= 2^250: every
+// partial product of the values then lies within 2^±250, and every partial gradient
+// below 32·2^250 (NaN fails the comparisons).
+static bool PlainFactors(const double* f, const double (*g)[3], size_t count)
 {
-  const size_t count = this->Factors.size();
-  // Every value non-zero, Π min(1, |f_k|) >= 2^-250 and Π max(1, |f_k|, |∇f_k|∞) <=
-  // 2^250: every partial product of the values then lies within 2^±250, and every
-  // partial gradient below 32·2^250 (NaN fails the comparisons).
   bool finite = true;
   double small = 1.0, big = 1.0;
-  auto check = [&](size_t k) {
+  for (size_t k = 0; k < count; ++k)
+  {
     const double a = std::fabs(f[k]), g0 = std::fabs(g[k][0]), g1 = std::fabs(g[k][1]),
                  g2 = std::fabs(g[k][2]);
     finite = finite && a > 0.0 && a <= Big && g0 <= Big && g1 <= Big && g2 <= Big;
     small *= std::min(1.0, a);
     big *= std::max({ 1.0, a, g0, g1, g2 });
-  };
-  auto plain = [&]() { return finite && small >= 0x1p-250 && big <= 0x1p250; };
+  }
+  return finite && small >= 0x1p-250 && big <= 0x1p250;
+}
+
+PISURF_AVX2_CLONES
+bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
+{
+  const size_t count = this->Factors.size();
   if (this->QuadricStride > 0)
   {
     // Four quadrics at a time: PolynomialFactor::QuadricWithGradient's operations.
@@ -840,19 +846,58 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
         g[k][0] = gx[l];
         g[k][1] = gy[l];
         g[k][2] = gz[l];
-        check(k);
       }
     }
-    return plain();
+    return PlainFactors(f, g, count);
   }
   for (size_t k = 0; k < count; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
     f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
                                 : pf.EvaluateWithGradient(p, g[k]);
-    check(k);
   }
-  return plain();
+  return PlainFactors(f, g, count);
+}
+
+void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
+  double* gradientNorm, int* nearest) const
+{
+  const size_t factors = this->Factors.size();
+  if (!this->AllPolynomial || factors == 0 || factors > MaxPlainVertex ||
+    this->QuadricStride > 0 || count > MaxVertices)
+  {
+    for (int j = 0; j < count; ++j)
+    {
+      this->EvaluateVertex(p[j], normal[j], gradientNorm[j], nearest[j]);
+    }
+    return;
+  }
+  // PlainVertexFactors at every point, factor by factor (the points' evaluations are
+  // independent: their chains overlap), then FinishPlainVertex at each.
+  double f[MaxVertices][MaxPlainVertex], g[MaxVertices][MaxPlainVertex][3];
+  for (size_t k = 0; k < factors; ++k)
+  {
+    const PolynomialFactor& pf = this->Factors[k].Polynomial;
+    if (this->StarQuadric[k])
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        f[j][k] = pf.QuadricWithGradient(p[j], g[j][k]);
+      }
+    }
+    else
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        f[j][k] = pf.EvaluateWithGradient(p[j], g[j][k]);
+      }
+    }
+  }
+  for (int j = 0; j < count; ++j)
+  {
+    this->FinishPlainVertex(f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr,
+      PlainFactors(f[j], g[j], factors));
+  }
 }
 
 void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], double normal[3],

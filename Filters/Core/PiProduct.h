@@ -86,6 +86,12 @@ public:
   /// if asked, ln|∇F| without clamping (−inf where ∇F = 0).
   void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest,
     double* logGradientNorm = nullptr) const;
+  /// EvaluateVertex at `count` points (up to MaxVertices), the same results: each factor
+  /// is evaluated at every point before the next factor, so that the points'
+  /// independent evaluations overlap (the mesher's vertices, a few at a time).
+  static constexpr int MaxVertices = 4;
+  void EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
+    double* gradientNorm, int* nearest) const;
   /// EvaluateVertex and the values of F at the six points p ± probe·e_a (as mantissa·
   /// 2^exponent, ordered as Polynomial3::EvaluateStar: −x, +x, −y, +y, −z, +z) in one
   /// pass over the factors, each factor's terms read once (PolynomialFactor::
