@@ -801,29 +801,34 @@ static void FinishVertex(
   }
 }
 
-// PlainVertexFactors' test on the values and gradients of `count` factors: every value
-// non-zero, Π min(1, |f_k|) >= 2^-250 and Π max(1, |f_k|, |∇f_k|∞) <= 2^250: every
-// partial product of the values then lies within 2^±250, and every partial gradient
-// below 32·2^250 (NaN fails the comparisons).
-static bool PlainFactors(const double* f, const double (*g)[3], size_t count)
+// PlainVertexFactors' test, one factor at a time (interleaved with the evaluations,
+// where its chains of products cost nothing): every value non-zero, Π min(1, |f_k|) >=
+// 2^-250 and Π max(1, |f_k|, |∇f_k|∞) <= 2^250: every partial product of the values then
+// lies within 2^±250, and every partial gradient below 32·2^250 (NaN fails the
+// comparisons).
+struct PlainTest
 {
-  bool finite = true;
-  double small = 1.0, big = 1.0;
-  for (size_t k = 0; k < count; ++k)
+  bool Finite = true;
+  double SmallProduct = 1.0, BigProduct = 1.0;
+  void Add(double f, const double g[3])
   {
-    const double a = std::fabs(f[k]), g0 = std::fabs(g[k][0]), g1 = std::fabs(g[k][1]),
-                 g2 = std::fabs(g[k][2]);
-    finite = finite && a > 0.0 && a <= Big && g0 <= Big && g1 <= Big && g2 <= Big;
-    small *= std::min(1.0, a);
-    big *= std::max({ 1.0, a, g0, g1, g2 });
+    const double a = std::fabs(f), g0 = std::fabs(g[0]), g1 = std::fabs(g[1]),
+                 g2 = std::fabs(g[2]);
+    this->Finite = this->Finite && a > 0.0 && a <= Big && g0 <= Big && g1 <= Big && g2 <= Big;
+    this->SmallProduct *= std::min(1.0, a);
+    this->BigProduct *= std::max(std::max(std::max(1.0, a), std::max(g0, g1)), g2);
   }
-  return finite && small >= 0x1p-250 && big <= 0x1p250;
-}
+  bool Plain() const
+  {
+    return this->Finite && this->SmallProduct >= 0x1p-250 && this->BigProduct <= 0x1p250;
+  }
+};
 
 PISURF_AVX2_CLONES
 bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
 {
   const size_t count = this->Factors.size();
+  PlainTest test;
   if (this->QuadricStride > 0)
   {
     // Four quadrics at a time: PolynomialFactor::QuadricWithGradient's operations.
@@ -846,17 +851,19 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
         g[k][0] = gx[l];
         g[k][1] = gy[l];
         g[k][2] = gz[l];
+        test.Add(f[k], g[k]);
       }
     }
-    return PlainFactors(f, g, count);
+    return test.Plain();
   }
   for (size_t k = 0; k < count; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
     f[k] = this->StarQuadric[k] ? pf.QuadricWithGradient(p, g[k]) // inline
                                 : pf.EvaluateWithGradient(p, g[k]);
+    test.Add(f[k], g[k]);
   }
-  return PlainFactors(f, g, count);
+  return test.Plain();
 }
 
 void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
@@ -875,6 +882,7 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
   // PlainVertexFactors at every point, factor by factor (the points' evaluations are
   // independent: their chains overlap), then FinishPlainVertex at each.
   double f[MaxVertices][MaxPlainVertex], g[MaxVertices][MaxPlainVertex][3];
+  PlainTest test[MaxVertices];
   for (size_t k = 0; k < factors; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
@@ -883,6 +891,7 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
       for (int j = 0; j < count; ++j)
       {
         f[j][k] = pf.QuadricWithGradient(p[j], g[j][k]);
+        test[j].Add(f[j][k], g[j][k]);
       }
     }
     else
@@ -890,13 +899,14 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
       for (int j = 0; j < count; ++j)
       {
         f[j][k] = pf.EvaluateWithGradient(p[j], g[j][k]);
+        test[j].Add(f[j][k], g[j][k]);
       }
     }
   }
   for (int j = 0; j < count; ++j)
   {
-    this->FinishPlainVertex(f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr,
-      PlainFactors(f[j], g[j], factors));
+    this->FinishPlainVertex(
+      f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, test[j].Plain());
   }
 }
 
