@@ -866,12 +866,12 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
   return test.Plain();
 }
 
+PISURF_AVX2_CLONES
 void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
   double* gradientNorm, int* nearest) const
 {
   const size_t factors = this->Factors.size();
-  if (!this->AllPolynomial || factors == 0 || factors > MaxPlainVertex ||
-    this->QuadricStride > 0 || count > MaxVertices)
+  if (!this->AllPolynomial || factors == 0 || factors > MaxPlainVertex || count > MaxVertices)
   {
     for (int j = 0; j < count; ++j)
     {
@@ -883,6 +883,41 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
   // independent: their chains overlap), then FinishPlainVertex at each.
   double f[MaxVertices][MaxPlainVertex], g[MaxVertices][MaxPlainVertex][3];
   PlainTest test[MaxVertices];
+  if (this->QuadricStride > 0)
+  {
+    // Four quadrics at a time, each group read once for all the points.
+    const size_t stride = this->QuadricStride;
+    const double* rows = this->QuadricRows.data();
+    for (size_t k0 = 0; k0 < stride; k0 += 4)
+    {
+      V4 scale[3], shift[3], q[10];
+      LoadQuadricGroup(rows, stride, k0, scale, shift, q);
+      for (int j = 0; j < count; ++j)
+      {
+        const V4 x = scale[0] * p[j][0] + shift[0], y = scale[1] * p[j][1] + shift[1],
+                 z = scale[2] * p[j][2] + shift[2];
+        V4 v, gl[3];
+        QuadricGradientOf(q, x, y, z, gl);
+        QuadricValueOf(q, x, y, z, v);
+        const V4 gx = scale[0] * gl[0], gy = scale[1] * gl[1], gz = scale[2] * gl[2];
+        for (size_t l = 0; l < 4 && k0 + l < factors; ++l)
+        {
+          const size_t k = k0 + l;
+          f[j][k] = v[l];
+          g[j][k][0] = gx[l];
+          g[j][k][1] = gy[l];
+          g[j][k][2] = gz[l];
+          test[j].Add(f[j][k], g[j][k]);
+        }
+      }
+    }
+    for (int j = 0; j < count; ++j)
+    {
+      this->FinishPlainVertex(
+        f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, test[j].Plain());
+    }
+    return;
+  }
   for (size_t k = 0; k < factors; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
