@@ -47,9 +47,12 @@
  *    frame, the factors are restricted to the edge's line once (one pass over their
  *    terms; an x edge takes its row's restriction from pass 2, where every polynomial
  *    factor in any frame is restricted) and Newton's method on the restricted product,
- *    kept in the bracket, finds the root in about three steps; where the plain product would leave the double
- *    range (thousands of factors, F beyond 1e200), Newton steps on F with the product
- *    kept as a logarithm, (1 − r/P) / Σ f_i'/f_i, safeguarded by bisection; otherwise
+ *    kept in the bracket, finds the root in two or three steps (vertices go four at a
+ *    time: their Newton steps, then their normals and nearest factors, run side by side,
+ *    so that each vertex's chain of dependent operations overlaps the others'); where
+ *    the plain product would leave the double range (thousands of factors, F beyond
+ *    1e200), Newton steps on F with the product kept as a logarithm,
+ *    (1 − r/P) / Σ f_i'/f_i, safeguarded by bisection; otherwise
  *    (rotated frames, r = 0) regula falsi (Illinois) on F, or on the overflow-free
  *    sign(F)·ln(1 + |F|) where F is beyond 1e200 at an end, with bisection as a
  *    fallback, finds it (|F| below 1e-12 of its end values, or a bracket below 1e-13 of
