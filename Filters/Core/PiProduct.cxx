@@ -824,6 +824,30 @@ struct PlainTest
   }
 };
 
+// One group of four quadrics (as LoadQuadricGroup reads them) at p: the values and
+// gradients of factors k0.. (of `count`) into f and g, each added to the plain test;
+// QuadricWithGradient's operations, four at a time.
+__attribute__((always_inline)) static inline void QuadricGroupAt(const V4 scale[3],
+  const V4 shift[3], const V4 q[10], const double p[3], size_t k0, size_t count, double* f,
+  double (*g)[3], PlainTest& test)
+{
+  const V4 x = scale[0] * p[0] + shift[0], y = scale[1] * p[1] + shift[1],
+           z = scale[2] * p[2] + shift[2];
+  V4 v, gl[3];
+  QuadricGradientOf(q, x, y, z, gl);
+  QuadricValueOf(q, x, y, z, v);
+  const V4 gx = scale[0] * gl[0], gy = scale[1] * gl[1], gz = scale[2] * gl[2];
+  for (size_t l = 0; l < 4 && k0 + l < count; ++l)
+  {
+    const size_t k = k0 + l;
+    f[k] = v[l];
+    g[k][0] = gx[l];
+    g[k][1] = gy[l];
+    g[k][2] = gz[l];
+    test.Add(f[k], g[k]);
+  }
+}
+
 PISURF_AVX2_CLONES
 bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)[3]) const
 {
@@ -838,21 +862,7 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
     {
       V4 scale[3], shift[3], q[10];
       LoadQuadricGroup(rows, stride, k0, scale, shift, q);
-      const V4 x = scale[0] * p[0] + shift[0], y = scale[1] * p[1] + shift[1],
-               z = scale[2] * p[2] + shift[2];
-      V4 v, gl[3];
-      QuadricGradientOf(q, x, y, z, gl);
-      QuadricValueOf(q, x, y, z, v);
-      const V4 gx = scale[0] * gl[0], gy = scale[1] * gl[1], gz = scale[2] * gl[2];
-      for (size_t l = 0; l < 4 && k0 + l < count; ++l)
-      {
-        const size_t k = k0 + l;
-        f[k] = v[l];
-        g[k][0] = gx[l];
-        g[k][1] = gy[l];
-        g[k][2] = gz[l];
-        test.Add(f[k], g[k]);
-      }
+      QuadricGroupAt(scale, shift, q, p, k0, count, f, g, test);
     }
     return test.Plain();
   }
@@ -894,21 +904,7 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
       LoadQuadricGroup(rows, stride, k0, scale, shift, q);
       for (int j = 0; j < count; ++j)
       {
-        const V4 x = scale[0] * p[j][0] + shift[0], y = scale[1] * p[j][1] + shift[1],
-                 z = scale[2] * p[j][2] + shift[2];
-        V4 v, gl[3];
-        QuadricGradientOf(q, x, y, z, gl);
-        QuadricValueOf(q, x, y, z, v);
-        const V4 gx = scale[0] * gl[0], gy = scale[1] * gl[1], gz = scale[2] * gl[2];
-        for (size_t l = 0; l < 4 && k0 + l < factors; ++l)
-        {
-          const size_t k = k0 + l;
-          f[j][k] = v[l];
-          g[j][k][0] = gx[l];
-          g[j][k][1] = gy[l];
-          g[j][k][2] = gz[l];
-          test[j].Add(f[j][k], g[j][k]);
-        }
+        QuadricGroupAt(scale, shift, q, p[j], k0, factors, f[j], g[j], test[j]);
       }
     }
     for (int j = 0; j < count; ++j)
