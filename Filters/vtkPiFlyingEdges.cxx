@@ -1674,8 +1674,8 @@ struct VertexAttributes
 
   // Newton's method as a state: Step takes F and dF/ds at S (ok false where they cannot
   // be had) and either moves S or finishes with Result (−1: the plain product cannot be
-  // used). NewtonOn runs one; the vertex loop runs two side by side (NewtonPair), whose
-  // chains of dependent operations then overlap.
+  // used). NewtonOn runs one; the vertex loop runs up to MaxLanes side by side
+  // (NewtonLanes), whose chains of dependent operations then overlap.
   struct NewtonLane
   {
     NewtonLane(double t, double va, double small, double width)
@@ -2075,7 +2075,7 @@ struct VertexAttributes
     return this->RowCoefficients->data() + r * this->RowCoefficientCount;
   }
 
-  // Refine's usual case for a product kernel, set up to run beside another vertex's: a
+  // Refine's usual case for a product kernel, set up to run beside other vertices': a
   // strict bracket of plain values, Newton's method on the row's restriction (an x
   // edge) or on the factors restricted to the edge's line. Where Newton cannot decide
   // (−1), Refine takes the vertex from the start (the same steps, then its fallbacks).
