@@ -75,7 +75,9 @@ void* AllocateLarge(std::size_t bytes)
   try
   {
     std::lock_guard<std::mutex> lock(cache.Mutex);
-    cache.Capacity.emplace(data, rounded);
+    // (Assigned, not emplaced: an entry left by a block freed some other way must not
+    // keep its old capacity for this one.)
+    cache.Capacity[data] = rounded;
   }
   catch (...)
   {

@@ -19,7 +19,6 @@
 #include <type_traits>
 #include <utility>
 
-
 namespace pisurf
 {
 /// Memory for a large array that is written once, from its first byte: from 512 KiB on,
@@ -38,8 +37,8 @@ namespace pisurf
 /// them back, already faulted in: the next execution of a filter reuses its previous
 /// output's memory once downstream has let it go, as vtkImageData::AllocateScalars
 /// reuses an unshared array of the right size.
-/// Release with ReleaseLarge (std::free would do, but loses the block). nullptr if out of
-/// memory.
+/// Release with ReleaseLarge only (it keeps the block's capacity on record). nullptr if
+/// out of memory.
 void* AllocateLarge(std::size_t bytes);
 /// Gives back a block of AllocateLarge (or any malloc'ed block, which is freed).
 /// Thread-safe; the block's contents are kept as they are.

@@ -2102,11 +2102,7 @@ struct VertexAttributes
     {
       return false;
     }
-    int axis = 0;
-    while (axis < 2 && e.A[axis] == e.B[axis])
-    {
-      ++axis;
-    }
+    const int axis = e.Axis;
     lane.Row = this->RowOf(e, lane.RowT0);
     if (!lane.Row)
     {
@@ -2117,7 +2113,6 @@ struct VertexAttributes
       }
     }
     lane.E = e;
-    lane.E.Axis = axis;
     lane.X0 = e.A[axis];
     lane.Dx = e.B[axis] - e.A[axis];
     const double length =
@@ -2257,9 +2252,7 @@ struct VertexAttributes
       double t = lanes[j].Newton.Result;
       if (t < 0.0)
       {
-        double rowT0;
-        const double* row = this->RowOf(e, rowT0);
-        t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, row, rowT0);
+        t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, lanes[j].Row, lanes[j].RowT0);
       }
       for (int k = 0; k < 3; ++k)
       {
