@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiEdgeFlips.h"
 #include "PiBuffer.h"
+#include "PiParallel.h"
 #include "PiTiming.h"
 
 #include "vtkSMPTools.h"
@@ -269,7 +270,7 @@ vtkIdType FlipMesh<Id, Conn>::Build()
     }
   };
   std::vector<Id> start(n + 1, 0);
-  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+  PiFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
       forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id) { ++start[low + 1]; });
@@ -281,7 +282,7 @@ vtkIdType FlipMesh<Id, Conn>::Build()
   }
   // (not initialized on allocation: the fill below writes every one)
   std::unique_ptr<Id[]> entries(new Id[h3]);
-  vtkSMPTools::For(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+  PiFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
       const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);

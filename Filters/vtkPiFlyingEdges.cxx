@@ -7,6 +7,7 @@
 
 #include "PiBuffer.h"
 #include "PiLargeArrays.h"
+#include "PiParallel.h"
 #include "PiEdgeFlips.h"
 #include "PiField.h"
 #include "PiModel.h"
@@ -863,7 +864,7 @@ public:
     // block is in the component of its centre): those count as the other sign.
     char* blockState = this->BlockState.data();
     const Grid* grid = &this->G;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Sign.size()), [=](vtkIdType begin, vtkIdType end) {
+    PiFor(0, static_cast<vtkIdType>(g.Sign.size()), 0, [=](vtkIdType begin, vtkIdType end) {
       for (vtkIdType b = begin; b < end; ++b)
       {
         if (grid->Sign[b] != outside)
@@ -890,7 +891,7 @@ public:
     // the outer side); points shared with a skipped block take that block's verdict.
     std::uint16_t* freeRows = this->Free.GetPointer();
     std::uint16_t* reachedRows = this->Reached.GetPointer();
-    vtkSMPTools::For(0, static_cast<vtkIdType>(active), [=](vtkIdType begin, vtkIdType end) {
+    PiFor(0, static_cast<vtkIdType>(active), 0, [=](vtkIdType begin, vtkIdType end) {
       for (vtkIdType s = begin; s < end; ++s)
       {
         int c[3];
@@ -1028,7 +1029,7 @@ public:
       }
       Envelope* self = this;
       const std::vector<vtkIdType>* blocks = &frontier;
-      vtkSMPTools::For(0, static_cast<vtkIdType>(frontier.size()), 8,
+      PiFor(0, static_cast<vtkIdType>(frontier.size()), 8,
         [self, blocks, &next](vtkIdType begin, vtkIdType end) {
           std::vector<vtkIdType>& stack = next.Local();
           Pusher push{ self, &stack };
@@ -2514,7 +2515,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       }
       return true;
     };
-    vtkSMPTools::For(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
+    PiFor(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType q = begin; q < end; ++q)
       {
         const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
@@ -2613,7 +2614,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     }
   }
   ClassifyBlocks classify{ &evaluator, &g, &undecided };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
+  PiFor(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
   g.Slot.assign(g.Sign.size(), -1);
   for (size_t b = 0; b < g.Sign.size(); ++b)
   {
@@ -2690,12 +2691,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   if (kernel && caches.empty())
   {
     RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   else if (kernel)
   {
     RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   lap("restrict rows");
 
@@ -2712,12 +2713,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   {
     SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
     sample.Prepare();
-    vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 64, sample);
+    PiFor(0, static_cast<vtkIdType>(rows.size()), 64, sample);
   }
   else
   {
     SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
-    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
+    PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
   }
   if (abort || this->CheckAbort())
   {
@@ -2797,7 +2798,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   contour.RowSigns = rowSigns.GetPointer();
   contour.EdgeMasks = edgeMasks.GetPointer();
   contour.EdgeOffsets = edgeOffsets.GetPointer();
-  vtkSMPTools::For(0, activeCount, 8, contour);
+  PiFor(0, activeCount, 8, contour);
   vtkIdType vertices = 0, triangles = 0;
   if (lap.IsEnabled())
   {
@@ -2841,9 +2842,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   // Edge tables first (triangles look up neighbours' tables), then the triangles.
   contour.Pass = Contour::Edges;
-  vtkSMPTools::For(0, activeCount, 8, contour);
+  PiFor(0, activeCount, 8, contour);
   contour.Pass = Contour::Triangles;
-  vtkSMPTools::For(0, activeCount, 8, contour);
+  PiFor(0, activeCount, 8, contour);
   if (pieces > 1)
   {
     // Keep only the vertices this piece's triangles use (the seams' vertices are shared
@@ -2915,7 +2916,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     kernel ? &rowIndex : nullptr, kernel ? &coefficients : nullptr,
     kernel ? kernel->GetLineCoefficientCount() : 0 };
   // Chunks of 4096 vertices: the main thread reports and checks for a cancel between them.
-  vtkSMPTools::For(0, vertices, 4096, attributes);
+  PiFor(0, vertices, 4096, attributes);
   this->Internals->ReleaseLargeWork();
   if (abort || this->CheckAbort())
   {
@@ -2930,7 +2931,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vtkNew<vtkCellArray> polys;
   auto fillOffsets = [triangles](auto* offset) {
     using Id = typename std::remove_pointer<decltype(offset)>::type;
-    vtkSMPTools::For(0, triangles + 1, [offset](vtkIdType begin, vtkIdType end) {
+    PiFor(0, triangles + 1, 0, [offset](vtkIdType begin, vtkIdType end) {
       for (vtkIdType t = begin; t < end; ++t)
       {
         offset[t] = static_cast<Id>(3 * t);

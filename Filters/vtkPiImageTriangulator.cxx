@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiImageTriangulator.h"
 #include "PiBuffer.h"
+#include "PiParallel.h"
 #include "PiLargeArrays.h"
 #include "PiEdgeFlips.h"
 #include "PiInputModel.h"
@@ -582,7 +583,7 @@ void Triangulation::RunLattice(const Lattice& L)
         *this->Kernel, o, u, v, d, L.N[ua], L.N[va], L.B1[a] - L.B0[a]);
     }
   }
-  vtkSMPTools::For(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) {
+  PiFor(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) {
     std::vector<pisurf::RayRoot> roots;
     std::vector<double> row, coefficients;
     std::vector<Sample> found;
@@ -722,7 +723,7 @@ void Triangulation::RunLattice(const Lattice& L)
   hiddenCount.reset();
   // All hidden roots in line order: each range's roots go where its first line's go.
   std::unique_ptr<Sample[]> hidden(new Sample[hiddenStart[lines]]);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
+  PiFor(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType k = b; k < e; ++k)
     {
       const HiddenRange& range = hiddenRanges[k];
@@ -737,7 +738,7 @@ void Triangulation::RunLattice(const Lattice& L)
   // (small ranges of lines: the hidden roots, whose attributes cost most here, crowd on
   // the lines through the solid's hidden parts, and eight ranges per thread would leave
   // one thread working alone at the end)
-  vtkSMPTools::For(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) {
+  PiFor(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) {
     for (vtkIdType l = lb; l < le; ++l)
     {
       const int a = l >= L.LineStart[2] ? 2 : l >= L.LineStart[1] ? 1 : 0;

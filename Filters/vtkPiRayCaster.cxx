@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
 #include "PiLargeArrays.h"
+#include "PiParallel.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
@@ -954,7 +955,7 @@ int vtkPiRayCaster::RequestData(
       std::vector<std::vector<int>> tileOffsets(tileCount);
       std::vector<std::vector<DepthRange>> tileRanges(tileCount);
       // (one tile per task: a tile's cost depends on how much of the model it sees)
-      vtkSMPTools::For(0, tileCount, 1, [&](vtkIdType begin, vtkIdType end) {
+      PiFor(0, tileCount, 1, [&](vtkIdType begin, vtkIdType end) {
         TileOctree octree;
         octree.Kernel = kernel.get();
         octree.V = &v;
@@ -1075,7 +1076,7 @@ int vtkPiRayCaster::RequestData(
   lap("setup");
   // Rows differ a lot in cost (the model covers the middle of the image): small chunks
   // keep the threads balanced.
-  vtkSMPTools::For(0, rowCount, 8, cast);
+  PiFor(0, rowCount, 8, cast);
   lap("roots");
   if (abort || this->CheckAbort())
   {
@@ -1141,7 +1142,7 @@ int vtkPiRayCaster::RequestData(
   unsigned char* tangentOut = tangent->GetPointer(0);
   int* factorOut = factor->GetPointer(0);
   // A row at a time (rows differ a lot in their number of hits: small chunks).
-  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
+  PiFor(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end; ++r)
     {
       vtkIdType k = rowOffsets[r];
@@ -1344,7 +1345,7 @@ void vtkPiRayCaster::Shade(const std::vector<View>& views, int rowBegin, int row
   // Image row r (view r / h, row rowBegin + r % h) is hit row r: each row is filled with
   // the background (white, no hit) and then given its first hits, in one pass over the
   // image (a first hit is the only one of its pixel).
-  vtkSMPTools::For(0, vtkIdType(h) * count, 16, [&](vtkIdType begin, vtkIdType end) {
+  PiFor(0, vtkIdType(h) * count, 16, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end; ++r)
     {
       const View& v = views[static_cast<size_t>(r / h)];

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSampleFunction.h"
 #include "PiLargeArrays.h"
+#include "PiParallel.h"
 #include "PiInputModel.h"
 #include "PiPieces.h"
 
@@ -169,7 +170,7 @@ int vtkPiSampleFunction::RequestData(
   const double mid = 0.5 * (d[0] - 1);
   std::atomic<bool> abort{ false };
   std::atomic<vtkIdType> done{ 0 };
-  vtkSMPTools::For(0, rows, 16, [&](vtkIdType begin, vtkIdType end) {
+  PiFor(0, rows, 16, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end && !abort; ++r)
     {
       const int j = extent[2] + static_cast<int>(r % ny), k = extent[4] + static_cast<int>(r / ny);

@@ -3,6 +3,7 @@
 
 #include "PiModel.h"
 #include "PiProduct.h"
+#include "PiParallel.h"
 #include "vtkPiPrimitive.h"
 
 #include "vtkCallbackCommand.h"
@@ -461,7 +462,7 @@ void vtkPiSurface::EvaluateFunction(vtkDataArray* input, vtkDataArray* output)
     return;
   }
   // PASS 1: evaluate blocks of points, factor by factor.
-  vtkSMPTools::For(0, n, 1024, [&](vtkIdType begin, vtkIdType end) {
+  PiFor(0, n, 1024, [&](vtkIdType begin, vtkIdType end) {
     std::vector<double> xyz(3 * (end - begin)), values(end - begin);
     for (vtkIdType i = begin; i < end; ++i)
     {
