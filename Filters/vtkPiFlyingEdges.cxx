@@ -442,11 +442,41 @@ struct Grid
 };
 
 // PASS 1: interval bounds of F over each block still undecided.
+//
+// With `Corners` (a product kernel), a block whose corners (grid points) have F of both
+// signs, or 0 at one, holds the surface: it is active without its enclosures, which
+// could not have decided it either (the same active blocks). Each corner is evaluated
+// once, by whichever block asks first (`Corners` starts at Unknown; two threads that
+// ask at once store the same sign).
 struct ClassifyBlocks
 {
   const Evaluator* Kernel;
   Grid* G;
   const std::vector<vtkIdType>* Blocks; // the blocks to classify
+  std::atomic<signed char>* Corners = nullptr; // per corner of the block lattice
+  static constexpr signed char Unknown = 2;
+
+  // The sign of F at corner (x, y, z) of the block lattice: grid point
+  // min(8·x, dims − 1) along each axis, the corner of the blocks that meet there.
+  int CornerSign(const int corner[3]) const
+  {
+    const Grid& g = *this->G;
+    const size_t id =
+      (size_t(corner[2]) * (g.Count[1] + 1) + corner[1]) * (g.Count[0] + 1) + corner[0];
+    signed char sign = this->Corners[id].load(std::memory_order_relaxed);
+    if (sign == Unknown)
+    {
+      double p[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        p[a] = g.Origin[a] + std::min(corner[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
+      }
+      const double f = this->Kernel->Evaluate(p);
+      sign = static_cast<signed char>(f > 0 ? 1 : (f < 0 ? -1 : 0)); // (NaN: 0, active)
+      this->Corners[id].store(sign, std::memory_order_relaxed);
+    }
+    return sign;
+  }
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
@@ -455,6 +485,22 @@ struct ClassifyBlocks
       const vtkIdType b = (*this->Blocks)[n];
       int c[3];
       this->G->BlockCoordinates(b, c);
+      if (this->Corners)
+      {
+        bool positive = false, negative = false;
+        for (int k = 0; k < 8 && !(positive && negative); ++k)
+        {
+          const int corner[3] = { c[0] + (k & 1), c[1] + ((k >> 1) & 1), c[2] + ((k >> 2) & 1) };
+          const int sign = this->CornerSign(corner);
+          positive = positive || sign >= 0;
+          negative = negative || sign <= 0;
+        }
+        if (positive && negative)
+        {
+          this->G->Sign[b] = 0;
+          continue;
+        }
+      }
       double box[6];
       for (int a = 0; a < 3; ++a)
       {
@@ -2614,6 +2660,19 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     }
   }
   ClassifyBlocks classify{ &evaluator, &g, &undecided };
+  std::unique_ptr<std::atomic<signed char>[]> corners;
+  // (Not for a field: a molecule's point evaluation costs more than the enclosures of
+  // a block it would spare, 16 × 1ubq classified in 39 ms with it and 36 ms without.)
+  if (evaluator.Kernel && !evaluator.Field)
+  {
+    const size_t lattice = size_t(g.Count[0] + 1) * (g.Count[1] + 1) * (g.Count[2] + 1);
+    corners.reset(new std::atomic<signed char>[lattice]);
+    for (size_t k = 0; k < lattice; ++k)
+    {
+      corners[k].store(ClassifyBlocks::Unknown, std::memory_order_relaxed);
+    }
+    classify.Corners = corners.get();
+  }
   PiFor(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
   g.Slot.assign(g.Sign.size(), -1);
   for (size_t b = 0; b < g.Sign.size(); ++b)

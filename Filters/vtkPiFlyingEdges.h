@@ -19,7 +19,10 @@
  *    quarters of undecided groups (for a product of polynomials, the octants of a
  *    group or quarter, bounded from its own expansions, decide the quarters or blocks
  *    they hold exactly); a block is kept only if one of its octants (bounded from the
- *    block's own expansion) may hold the surface.
+ *    block's own expansion) may hold the surface. For a product of polynomials, a
+ *    block still undecided whose eight corners show F of both signs (or 0 at one)
+ *    holds the surface for certain: it is kept without its enclosures (each corner
+ *    evaluated once; the same blocks are kept).
  * 2. Every polynomial factor is restricted once to each grid row that crosses an
  *    active block (an exact univariate polynomial about the row's middle), so no
  *    virtual call is paid per point per factor, and every grid point evaluates
