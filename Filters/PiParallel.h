@@ -16,8 +16,8 @@
  * With the Sequential backend (one thread) PiFor is vtkSMPTools::For itself.
  *
  * The functor keeps everything vtkSMPTools gives it: it runs on vtkSMPTools' threads,
- * so `vtkSMPTools::GetSingleThread()` is true on the same one thread (progress and
- * cancel checks), and nested calls run serially as vtkSMPTools runs them. It must not
+ * so `PiSingleThread()` (below) is true on exactly one of them (progress and cancel
+ * checks), and nested calls run serially as vtkSMPTools runs them. It must not
  * need per-thread Initialize/Reduce (no PiSurfaces functor has them).
  */
 #ifndef PiParallel_h
@@ -27,6 +27,18 @@
 
 #include <algorithm>
 #include <atomic>
+
+/// `vtkSMPTools::GetSingleThread()`, also where a loop runs serially. ParaView 5.11's
+/// STDThread backend answers it from a stack of thread ids that only its parallel loops
+/// push: in a loop it runs serially on the calling thread (a range no longer than the
+/// grain), it reads the top of the empty stack, which is undefined (TestPiParallel
+/// crashed on it). Outside a parallel scope the calling thread is the only one, so it
+/// is the single thread. The functors use this to decide which thread reports progress
+/// and checks for a cancel.
+inline bool PiSingleThread()
+{
+  return !vtkSMPTools::IsParallelScope() || vtkSMPTools::GetSingleThread();
+}
 
 template <class Functor>
 void PiFor(vtkIdType first, vtkIdType last, vtkIdType grain, Functor&& f)

@@ -550,7 +550,7 @@ struct SampleBlocks
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const bool single = vtkSMPTools::GetSingleThread();
+    const bool single = PiSingleThread();
     const size_t n = this->Kernel ? this->Kernel->GetLineCoefficientCount() : 0;
     const double mid = 0.5 * (this->G->Dims[0] - 1);
     for (vtkIdType s = begin; s < end; ++s)
@@ -658,7 +658,7 @@ struct SampleRows
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const bool single = vtkSMPTools::GetSingleThread();
+    const bool single = PiSingleThread();
     const size_t n = this->Kernel->GetLineCoefficientCount();
     const int* d = this->G->Dims;
     const double mid = 0.5 * (d[0] - 1);
@@ -2316,7 +2316,7 @@ struct VertexAttributes
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    if (vtkSMPTools::GetSingleThread())
+    if (PiSingleThread())
     {
       if (this->Algorithm->CheckAbort())
       {

@@ -373,7 +373,7 @@ struct Triangulation
 
   bool Aborted()
   {
-    if (vtkSMPTools::GetSingleThread() && this->Algorithm->CheckAbort())
+    if (PiSingleThread() && this->Algorithm->CheckAbort())
     {
       this->Abort = true;
     }
@@ -908,7 +908,7 @@ void Triangulation::RunLattice(const Lattice& L)
     for (vtkIdType jj = jb; jj < je && !this->Aborted(); ++jj)
     {
       const int j = static_cast<int>(jj);
-      if (vtkSMPTools::GetSingleThread())
+      if (PiSingleThread())
       {
         this->Algorithm->UpdateProgress(0.3 + 0.6 * j / (ny - 1));
       }

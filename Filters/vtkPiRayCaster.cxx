@@ -511,7 +511,7 @@ struct CastRows
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const bool single = vtkSMPTools::GetSingleThread();
+    const bool single = PiSingleThread();
     Buffers buffers;
     for (vtkIdType row = begin; row < end; ++row)
     {

@@ -197,7 +197,7 @@ int vtkPiSampleFunction::RequestData(
     }
     const vtkIdType finished = done += end - begin;
     // Progress and abort from the thread that may call into the pipeline.
-    if (vtkSMPTools::GetSingleThread())
+    if (PiSingleThread())
     {
       this->UpdateProgress(double(finished) / rows);
       if (this->CheckAbort())
