@@ -29,6 +29,8 @@
 #include "vtkIntArray.h"
 #include "PiMarchingCubes.h"
 #include "vtkMarchingCubesTriangleCases.h"
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -269,6 +271,9 @@ struct Evaluator
 // or contoured. The others are "active".
 constexpr int BlockCells = 8;
 constexpr int BlockPoints = BlockCells + 1;
+// Grid::Sign of a block outside the layers a piece works on (see GenerateMesh's pieces):
+// neither classified nor sampled; the passes never visit it.
+constexpr signed char AbsentBlock = 3;
 constexpr double ValueLimit = 1e300;
 // Bit i set where row[i] >= 0, for i < count (at most 16): two points per comparison
 // where SSE2 is there (the x86-64 baseline).
@@ -992,7 +997,8 @@ public:
         for (int pass = 0; pass < 2; ++pass)
         {
           grid->ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
-            if (grid->Sign[nb] == 0 || (blockState[nb] == FreeBlock) != (pass == 0))
+            if (grid->Sign[nb] == 0 || grid->Sign[nb] == AbsentBlock ||
+              (blockState[nb] == FreeBlock) != (pass == 0))
             {
               return;
             }
@@ -1027,7 +1033,7 @@ public:
     const int* count = this->G.Count;
     this->Queued.assign(this->G.Sign.size(), 0);
     std::vector<vtkIdType> frontier;
-    // Seeds: every free point on the boundary of the grid.
+    // Seeds: every free point on the boundary of the grid (in the layers it floods).
     Pusher seeds{ this, &frontier };
     for (vtkIdType b = 0; b < static_cast<vtkIdType>(this->G.Sign.size()); ++b)
     {
@@ -1035,7 +1041,7 @@ public:
       this->G.BlockCoordinates(b, c);
       const bool boundary = c[0] == 0 || c[1] == 0 || c[2] == 0 || c[0] == count[0] - 1 ||
         c[1] == count[1] - 1 || c[2] == count[2] - 1;
-      if (!boundary)
+      if (!boundary || c[2] < this->FloodBegin || c[2] >= this->FloodEnd)
       {
         continue;
       }
@@ -1065,6 +1071,123 @@ public:
         seeds.Push(b);
       }
     }
+    this->Run(frontier);
+  }
+
+  // Only the block layers [begin, end) along z are flooded (a piece's slab, see
+  // FloodAcrossPieces); the default is every layer.
+  void SetFloodLayers(int begin, int end)
+  {
+    this->FloodBegin = begin;
+    this->FloodEnd = end;
+  }
+
+  // Flood's fixed point over the pieces' slabs together (ParaView's MPI mode: piece p of
+  // n on process p, each flooding its own slab, after Flood). Neighbouring slabs share
+  // the plane of points between them (each holds it in its own blocks), so what one
+  // reached there is reached in the other too: in rounds, each piece sends the reached
+  // points of its bottom and top planes to the pieces below and above, adds theirs and
+  // floods on from them, until a round adds nothing anywhere. The set reached is the
+  // serial flood's (the free points connected to the boundary through free points,
+  // whichever slabs the path crosses). Every process must call this.
+  // Returns the number of rounds.
+  int FloodAcrossPieces(vtkMultiProcessController* controller, int piece, int pieces)
+  {
+    const vtkIdType size = vtkIdType(this->G.Dims[0]) * this->G.Dims[1];
+    std::vector<unsigned char> bottom, top, fromBelow(size, 0), fromAbove(size, 0);
+    const bool below = piece > 0, above = piece + 1 < pieces;
+    // A piece without layers (more pieces than layers) has one plane, its neighbours'
+    // shared one: it hands on what comes from below upwards and what comes from above
+    // downwards, in the same round.
+    const bool empty = this->FloodBegin >= this->FloodEnd;
+    for (int round = 1;; ++round)
+    {
+      if (below && !empty)
+      {
+        this->ReadPlane(this->FloodBegin, false, bottom);
+      }
+      if (above && !empty)
+      {
+        this->ReadPlane(this->FloodEnd - 1, true, top);
+      }
+      // Up the chain of pieces, then down (each receive meets the send before it: no
+      // cycle of waiting processes).
+      if (below)
+      {
+        controller->Receive(fromBelow.data(), size, piece - 1, PlaneUpTag);
+      }
+      if (above)
+      {
+        controller->Send(empty ? fromBelow.data() : top.data(), size, piece + 1, PlaneUpTag);
+        controller->Receive(fromAbove.data(), size, piece + 1, PlaneDownTag);
+      }
+      if (below)
+      {
+        controller->Send(empty ? fromAbove.data() : bottom.data(), size, piece - 1, PlaneDownTag);
+      }
+      std::vector<vtkIdType> frontier;
+      if (below && !empty)
+      {
+        this->SeedPlane(this->FloodBegin, false, fromBelow, frontier);
+      }
+      if (above && !empty)
+      {
+        this->SeedPlane(this->FloodEnd - 1, true, fromAbove, frontier);
+      }
+      int added = frontier.empty() ? 0 : 1, anywhere = 0;
+      controller->AllReduce(&added, &anywhere, 1, vtkCommunicator::MAX_OP);
+      if (!anywhere)
+      {
+        return round;
+      }
+      this->Run(frontier);
+    }
+  }
+
+  // The blocks of layer `ghost` (the layer above a piece's slab: contoured only to number
+  // the vertices on the plane it shares with the slab) take the slab's reached points on
+  // that plane, their bottom one. (Their other points stay unreached: no triangle of the
+  // piece uses them.)
+  void CopyTopPlaneTo(int ghost)
+  {
+    std::vector<unsigned char> plane;
+    this->ReadPlane(this->FloodEnd - 1, true, plane);
+    const Grid& g = this->G;
+    for (int by = 0; by < g.Count[1]; ++by)
+      for (int bx = 0; bx < g.Count[0]; ++bx)
+      {
+        const vtkIdType b = g.BlockId(bx, by, ghost);
+        if (g.Sign[b] != 0 || g.Slot[b] < 0)
+        {
+          continue;
+        }
+        const int c[3] = { bx, by, ghost };
+        int n[3];
+        g.CellCounts(c, n);
+        const std::uint16_t* fr = this->Free.GetPointer() + size_t(g.Slot[b]) * Rows;
+        std::uint16_t* rr = this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows;
+        for (int lj = 0; lj <= n[1]; ++lj)
+        {
+          const unsigned char* in = plane.data() +
+            size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
+          unsigned bits = 0;
+          for (int li = 0; li <= n[0]; ++li)
+          {
+            bits |= unsigned(in[li] != 0) << li;
+          }
+          rr[lj] = static_cast<std::uint16_t>(bits & fr[lj]);
+        }
+      }
+  }
+
+private:
+  // Message tags of FloodAcrossPieces.
+  static constexpr int PlaneUpTag = 924101;
+  static constexpr int PlaneDownTag = 924102;
+
+  // Flood's rounds from `frontier` to the fixed point.
+  void Run(std::vector<vtkIdType>& frontier)
+  {
     vtkSMPThreadLocal<std::vector<vtkIdType>> next;
     while (!frontier.empty())
     {
@@ -1105,6 +1228,107 @@ public:
     }
   }
 
+  // Whether the flood enters block b (its layer is flooded).
+  bool Floods(vtkIdType b) const
+  {
+    if (this->FloodBegin == 0 && this->FloodEnd >= this->G.Count[2])
+    {
+      return true; // (every layer: no division)
+    }
+    const vtkIdType layer = b / (vtkIdType(this->G.Count[0]) * this->G.Count[1]);
+    return layer >= this->FloodBegin && layer < this->FloodEnd;
+  }
+
+  // The reached points of the bottom (or top) plane of block layer `layer`, one byte per
+  // point at j·Dims[0] + i: from its active blocks' rows, and every point of its reached
+  // skipped blocks.
+  void ReadPlane(int layer, bool topPlane, std::vector<unsigned char>& plane) const
+  {
+    const Grid& g = this->G;
+    plane.assign(size_t(g.Dims[0]) * g.Dims[1], 0);
+    for (int by = 0; by < g.Count[1]; ++by)
+      for (int bx = 0; bx < g.Count[0]; ++bx)
+      {
+        const vtkIdType b = g.BlockId(bx, by, layer);
+        const int c[3] = { bx, by, layer };
+        int n[3];
+        g.CellCounts(c, n);
+        const bool active = g.Sign[b] == 0;
+        if (!active && this->BlockState[b] != ReachedBlock)
+        {
+          continue;
+        }
+        const std::uint16_t* rr =
+          active ? this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows : nullptr;
+        const int lk = topPlane ? n[2] : 0;
+        for (int lj = 0; lj <= n[1]; ++lj)
+        {
+          const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
+          unsigned char* out =
+            plane.data() + size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
+          for (int li = 0; li <= n[0]; ++li)
+          {
+            out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
+          }
+        }
+      }
+  }
+
+  // Adds the points set in `plane` (ReadPlane's layout) to the blocks of layer `layer`
+  // on its bottom (or top) plane, queueing in `frontier` each block that gains any.
+  void SeedPlane(int layer, bool topPlane, const std::vector<unsigned char>& plane,
+    std::vector<vtkIdType>& frontier)
+  {
+    const Grid& g = this->G;
+    Pusher push{ this, &frontier };
+    for (int by = 0; by < g.Count[1]; ++by)
+      for (int bx = 0; bx < g.Count[0]; ++bx)
+      {
+        const vtkIdType b = g.BlockId(bx, by, layer);
+        const int c[3] = { bx, by, layer };
+        int n[3];
+        g.CellCounts(c, n);
+        const bool active = g.Sign[b] == 0;
+        if (!active && this->BlockState[b] != FreeBlock)
+        {
+          continue;
+        }
+        const int lk = topPlane ? n[2] : 0;
+        bool added = false, any = false;
+        for (int lj = 0; lj <= n[1]; ++lj)
+        {
+          const unsigned char* in =
+            plane.data() + size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
+          unsigned bits = 0;
+          for (int li = 0; li <= n[0]; ++li)
+          {
+            bits |= unsigned(in[li] != 0) << li;
+          }
+          any = any || bits != 0;
+          if (active && bits)
+          {
+            const int r = lk * BlockPoints + lj;
+            const size_t base = size_t(g.Slot[b]) * Rows;
+            const unsigned add =
+              bits & this->Free.GetPointer()[base + r] & ~LoadRow(this->Reached.GetPointer() + base + r);
+            if (add && AddToRow(this->Reached.GetPointer() + base + r, add))
+            {
+              added = true;
+            }
+          }
+        }
+        if (active && added)
+        {
+          push.Push(b);
+        }
+        else if (!active && any)
+        {
+          this->ReachSkipped(b, push);
+        }
+      }
+  }
+
+public:
   int GetOutside() const { return this->Outside; }
 
   /// The row masks the contouring sees in active block `slot`: bit i set where the sign
@@ -1183,6 +1407,10 @@ private:
     if (this->G.Sign[b] != 0)
     {
       this->G.ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
+        if (!this->Floods(nb))
+        {
+          return;
+        }
         if (this->G.Sign[nb] != 0)
         {
           this->ReachSkipped(nb, push);
@@ -1214,7 +1442,8 @@ private:
       {
         int m[3] = { c[0], c[1], c[2] };
         m[a] += side ? 1 : -1;
-        if (m[a] < 0 || m[a] >= count[a])
+        if (m[a] < 0 || m[a] >= count[a] ||
+          (a == 2 && (m[2] < this->FloodBegin || m[2] >= this->FloodEnd)))
         {
           continue;
         }
@@ -1388,6 +1617,7 @@ private:
   pisurf::Buffer<std::uint16_t>& Free;    // per active block: Rows masks each
   pisurf::Buffer<std::uint16_t>& Reached; // (the same)
   std::vector<char> Queued; // per block: queued for the flood's next round
+  int FloodBegin = 0, FloodEnd = 1 << 30; // the block layers flooded
 };
 
 // PASS 5 and 6: marching cubes over the cells of the active blocks. Each crossing edge
@@ -2526,6 +2756,25 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     // local index below BlockCells (that block may be a single plane without cells).
     g.Count[a] = (g.Dims[a] - 1) / BlockCells + 1;
   }
+  // This piece's slab of block layers along z (all of them for one piece).
+  const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
+  const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
+  // A piece of several works on its slab: it classifies and samples only the block
+  // layers [slabBegin, slabEnd] (the layer above the slab numbers the vertices on the
+  // plane they share) and, with OuterEnvelope, classifies the layer below too (its
+  // skipped blocks decide the shared plane's points, as in a serial run); the outer
+  // envelope is then flooded slab by slab with the other pieces (FloodAcrossPieces),
+  // which needs piece p of n on process p of the global controller's n (ParaView's MPI
+  // mode). Otherwise (several pieces in one process, with OuterEnvelope) every piece
+  // classifies and samples the whole grid, as the envelope is a global property.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool distributed = pieces > 1 && this->OuterEnvelope && controller && controller->GetNumberOfProcesses() == pieces &&
+    controller->GetLocalProcessId() == piece;
+  const bool slabOnly = pieces > 1 && (!this->OuterEnvelope || distributed);
+  const int classifyBegin =
+    slabOnly ? std::max(0, slabBegin - (this->OuterEnvelope ? 1 : 0)) : 0;
+  const int classifyEnd = slabOnly ? std::min(g.Count[2], slabEnd + 1) : g.Count[2];
+  const int sampleBegin = slabOnly ? slabBegin : 0;
 
   // PASS 1: classify the blocks, coarse to fine: groups of 4³ blocks first, then the
   // 2³-block quarters of the undecided groups, then the blocks the surface may cross
@@ -2566,6 +2815,10 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       {
         const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
           int(q / (vtkIdType(groups[0]) * groups[1])) };
+        if (c[2] * group >= classifyEnd || c[2] * group + group <= classifyBegin)
+        {
+          continue; // no layer of this piece's (marked absent below)
+        }
         int lo[3], hi[3];
         double box[6];
         for (int a = 0; a < 3; ++a)
@@ -2651,6 +2904,12 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       }
     });
   }
+  if (slabOnly)
+  {
+    const size_t layer = size_t(g.Count[0]) * g.Count[1];
+    std::fill(g.Sign.begin(), g.Sign.begin() + layer * classifyBegin, AbsentBlock);
+    std::fill(g.Sign.begin() + layer * classifyEnd, g.Sign.end(), AbsentBlock);
+  }
   std::vector<vtkIdType> undecided;
   for (size_t b = 0; b < g.Sign.size(); ++b)
   {
@@ -2675,7 +2934,9 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   PiFor(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
   g.Slot.assign(g.Sign.size(), -1);
-  for (size_t b = 0; b < g.Sign.size(); ++b)
+  // (The layer below the slab is classified, not sampled: its blocks are never active.)
+  const size_t firstSampled = size_t(g.Count[0]) * g.Count[1] * sampleBegin;
+  for (size_t b = firstSampled; b < g.Sign.size(); ++b)
   {
     if (g.Sign[b] == 0)
     {
@@ -2730,12 +2991,14 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   {
     coefficients.clear();
   }
-  else
+  bool tooManyRows = false;
+  if (kernel)
   {
     // Every polynomial factor restricted to every row: with many factors this, not the
     // grid, is the largest array. It shares the grid's cap.
     const double count = double(rows.size()) * kernel->GetLineCoefficientCount();
-    if (count > static_cast<double>(this->MaximumNumberOfSamples))
+    tooManyRows = count > static_cast<double>(this->MaximumNumberOfSamples);
+    if (tooManyRows)
     {
       vtkErrorMacro(<< "The " << kernel->GetNumberOfFactors() << " factors restricted to the "
                     << rows.size() << " grid rows the surface may cross need "
@@ -2743,11 +3006,21 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
                     << this->MaximumNumberOfSamples * sizeof(double) / (1 << 20)
                     << " MiB (MaximumNumberOfSamples doubles): lower the Resolution or the "
                        "number of primitives");
-      return 0;
+      if (!distributed)
+      {
+        return 0;
+      }
     }
-    coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
+    else
+    {
+      coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
+    }
   }
-  if (kernel && caches.empty())
+  if (tooManyRows)
+  {
+    // (A distributed piece skips its work to tell the others below.)
+  }
+  else if (kernel && caches.empty())
   {
     RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
     PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
@@ -2768,7 +3041,10 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   g.Values = this->Internals->Values.GetPointer();
   std::atomic<bool> abort{ false };
-  if (kernel && kernel->IsPolynomial())
+  if (tooManyRows)
+  {
+  }
+  else if (kernel && kernel->IsPolynomial())
   {
     SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
     sample.Prepare();
@@ -2779,9 +3055,25 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
     PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
   }
-  if (abort || this->CheckAbort())
   {
-    return 1;
+    // 0: go on, 1: cancelled, 2: failed. With the pieces flooding together every
+    // process must reach the flood, or none: a piece that stops here (an error of its
+    // own, a cancel) tells the others, and all stop.
+    int stop = tooManyRows ? 2 : (abort || this->CheckAbort()) ? 1 : 0;
+    if (distributed)
+    {
+      const int mine = stop;
+      controller->AllReduce(&mine, &stop, 1, vtkCommunicator::MAX_OP);
+      if (stop == 2 && mine != 2)
+      {
+        vtkErrorMacro(<< "Another piece of the mesh failed (see its error): piece " << piece
+                      << " of " << pieces << " stops too");
+      }
+    }
+    if (stop != 0)
+    {
+      return stop == 2 ? 0 : 1;
+    }
   }
   this->UpdateProgress(0.5);
   lap("sample");
@@ -2804,17 +3096,50 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
             idx[a] = side ? d[a] - 1 : 0;
             idx[u] = p;
             idx[w] = q;
+            // (A piece of several counts the points of its own slab; the pieces add up.)
+            const int layer = std::min(idx[2] / BlockCells, g.Count[2] - 1);
+            if (slabOnly && (layer < slabBegin || layer >= slabEnd))
+            {
+              continue;
+            }
             const vtkIdType b = g.SkippedBlockOf(idx[0], idx[1], idx[2]);
             const double v = b >= 0 ? g.Sign[b] : g.ActiveValue(idx[0], idx[1], idx[2]);
             positive += v >= 0;
             ++total;
           }
     }
+    if (distributed)
+    {
+      const vtkIdType mine[2] = { positive, total };
+      vtkIdType sum[2] = { 0, 0 };
+      controller->AllReduce(mine, sum, 2, vtkCommunicator::SUM_OP);
+      positive = sum[0];
+      total = sum[1];
+    }
     envelope.reset(
       new Envelope(g, 2 * positive >= total ? 1 : -1, field.get(), this->Internals->EnvelopeFree,
         this->Internals->EnvelopeReached));
     lap("envelope states");
+    if (distributed)
+    {
+      envelope->SetFloodLayers(slabBegin, slabEnd);
+    }
     envelope->Flood();
+    if (distributed)
+    {
+      const int rounds = envelope->FloodAcrossPieces(controller, piece, pieces);
+      if (lap.IsEnabled())
+      {
+        std::cerr << "piece " << piece << " of " << pieces << ": block layers " << slabBegin
+                  << " to " << slabEnd - 1 << " of " << g.Count[2]
+                  << ", the envelope flooded with the other pieces in " << rounds
+                  << " rounds\n";
+      }
+      if (slabBegin < slabEnd && slabEnd < g.Count[2])
+      {
+        envelope->CopyTopPlaneTo(slabEnd);
+      }
+    }
   }
   if (this->CheckAbort())
   {
@@ -2831,9 +3156,6 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   pisurf::Buffer<vtkIdType>& vertexEdge = this->Internals->VertexEdge;
   pisurf::Buffer<double>& vertexT = this->Internals->VertexT;
   pisurf::Buffer<double>& vertexEnds = this->Internals->VertexEnds;
-  // This piece's slab of block layers along z (all of them for one piece).
-  const int slabBegin = static_cast<int>(vtkIdType(g.Count[2]) * piece / pieces);
-  const int slabEnd = static_cast<int>(vtkIdType(g.Count[2]) * (piece + 1) / pieces);
   // Triangles per marching-cubes case.
   std::uint8_t trianglesOfCase[256];
   for (int index = 0; index < 256; ++index)

@@ -80,10 +80,20 @@
  * refused with the memory they would need.
  *
  * Pieces (ParaView's MPI mode, or UpdatePiece): piece p of n produces the triangles of
- * the blocks in layers [p·Cz/n, (p+1)·Cz/n) along z (Cz layers of blocks). Every piece
- * classifies and evaluates the whole grid (the outer envelope is a global property),
- * but contours, projects and attributes only its own slab; the union of the pieces is
- * the serial mesh, with the seam vertices present in both neighbours.
+ * the blocks in layers [p·Cz/n, (p+1)·Cz/n) along z (Cz layers of blocks), its slab; the
+ * union of the pieces is the serial mesh, with the seam vertices present in both
+ * neighbours. A piece classifies and samples only its slab and the block layer above it
+ * (which numbers the vertices on the plane they share), and, with OuterEnvelope, also
+ * classifies the layer below (its skipped blocks decide the points of the shared plane,
+ * as in a serial run). The outer envelope is a global property: in ParaView's MPI mode
+ * (piece p of n on process p of n of vtkMultiProcessController's global controller)
+ * each process floods its own slab, and the processes then hand each other, in rounds,
+ * the reached points of the planes their slabs share, flooding on from them until a
+ * round adds nothing anywhere (two rounds for the cup on four processes): the serial
+ * envelope, whichever slabs the outside region winds through. Every process must then
+ * execute the mesher together, as with VTK's other parallel filters (pvbatch
+ * --symmetric for VTK-level scripts). Several pieces in one process with OuterEnvelope
+ * (a streaming pipeline) each classify and sample the whole grid instead.
  *
  * The largest work buffer (the active blocks' values) is kept between executions, so
  * re-meshing does not pay for fresh memory again; it is released with the object. So
