@@ -1153,31 +1153,18 @@ public:
     std::vector<unsigned char> plane;
     this->ReadPlane(this->FloodEnd - 1, true, plane);
     const Grid& g = this->G;
-    for (int by = 0; by < g.Count[1]; ++by)
-      for (int bx = 0; bx < g.Count[0]; ++bx)
+    this->ForEachBlockOfLayer(ghost, [&](vtkIdType b, const int c[3], const int n[3]) {
+      if (g.Sign[b] != 0 || g.Slot[b] < 0)
       {
-        const vtkIdType b = g.BlockId(bx, by, ghost);
-        if (g.Sign[b] != 0 || g.Slot[b] < 0)
-        {
-          continue;
-        }
-        const int c[3] = { bx, by, ghost };
-        int n[3];
-        g.CellCounts(c, n);
-        const std::uint16_t* fr = this->Free.GetPointer() + size_t(g.Slot[b]) * Rows;
-        std::uint16_t* rr = this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows;
-        for (int lj = 0; lj <= n[1]; ++lj)
-        {
-          const unsigned char* in = plane.data() +
-            size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
-          unsigned bits = 0;
-          for (int li = 0; li <= n[0]; ++li)
-          {
-            bits |= unsigned(in[li] != 0) << li;
-          }
-          rr[lj] = static_cast<std::uint16_t>(bits & fr[lj]);
-        }
+        return;
       }
+      const size_t base = size_t(g.Slot[b]) * Rows;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        this->Reached.GetPointer()[base + lj] = static_cast<std::uint16_t>(
+          this->PlaneRow(plane, c, lj, n[0]) & this->Free.GetPointer()[base + lj]);
+      }
+    });
   }
 
 private:
@@ -1239,39 +1226,61 @@ private:
     return layer >= this->FloodBegin && layer < this->FloodEnd;
   }
 
-  // The reached points of the bottom (or top) plane of block layer `layer`, one byte per
-  // point at j·Dims[0] + i: from its active blocks' rows, and every point of its reached
-  // skipped blocks.
+  // f(block id, its cell counts n) for each block of layer `layer`.
+  template <typename Function>
+  void ForEachBlockOfLayer(int layer, Function f) const
+  {
+    const Grid& g = this->G;
+    for (int by = 0; by < g.Count[1]; ++by)
+      for (int bx = 0; bx < g.Count[0]; ++bx)
+      {
+        const int c[3] = { bx, by, layer };
+        int n[3];
+        g.CellCounts(c, n);
+        f(g.BlockId(bx, by, layer), c, n);
+      }
+  }
+
+  // The plane's points (one byte each, at j·Dims[0] + i) of row lj of block c's plane, as
+  // a row mask of n0 + 1 bits.
+  unsigned PlaneRow(const std::vector<unsigned char>& plane, const int c[3], int lj, int n0) const
+  {
+    const unsigned char* in =
+      plane.data() + size_t(c[1] * BlockCells + lj) * this->G.Dims[0] + c[0] * BlockCells;
+    unsigned bits = 0;
+    for (int li = 0; li <= n0; ++li)
+    {
+      bits |= unsigned(in[li] != 0) << li;
+    }
+    return bits;
+  }
+
+  // The reached points of the bottom (or top) plane of block layer `layer` in that
+  // layout: from its active blocks' rows, and every point of its reached skipped blocks.
   void ReadPlane(int layer, bool topPlane, std::vector<unsigned char>& plane) const
   {
     const Grid& g = this->G;
     plane.assign(size_t(g.Dims[0]) * g.Dims[1], 0);
-    for (int by = 0; by < g.Count[1]; ++by)
-      for (int bx = 0; bx < g.Count[0]; ++bx)
+    this->ForEachBlockOfLayer(layer, [&](vtkIdType b, const int c[3], const int n[3]) {
+      const bool active = g.Sign[b] == 0;
+      if (!active && this->BlockState[b] != ReachedBlock)
       {
-        const vtkIdType b = g.BlockId(bx, by, layer);
-        const int c[3] = { bx, by, layer };
-        int n[3];
-        g.CellCounts(c, n);
-        const bool active = g.Sign[b] == 0;
-        if (!active && this->BlockState[b] != ReachedBlock)
+        return;
+      }
+      const std::uint16_t* rr =
+        active ? this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows : nullptr;
+      const int lk = topPlane ? n[2] : 0;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
+        unsigned char* out =
+          plane.data() + size_t(c[1] * BlockCells + lj) * g.Dims[0] + c[0] * BlockCells;
+        for (int li = 0; li <= n[0]; ++li)
         {
-          continue;
-        }
-        const std::uint16_t* rr =
-          active ? this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows : nullptr;
-        const int lk = topPlane ? n[2] : 0;
-        for (int lj = 0; lj <= n[1]; ++lj)
-        {
-          const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
-          unsigned char* out =
-            plane.data() + size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
-          for (int li = 0; li <= n[0]; ++li)
-          {
-            out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
-          }
+          out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
         }
       }
+    });
   }
 
   // Adds the points set in `plane` (ReadPlane's layout) to the blocks of layer `layer`
@@ -1281,51 +1290,36 @@ private:
   {
     const Grid& g = this->G;
     Pusher push{ this, &frontier };
-    for (int by = 0; by < g.Count[1]; ++by)
-      for (int bx = 0; bx < g.Count[0]; ++bx)
+    this->ForEachBlockOfLayer(layer, [&](vtkIdType b, const int c[3], const int n[3]) {
+      const bool active = g.Sign[b] == 0;
+      if (!active && this->BlockState[b] != FreeBlock)
       {
-        const vtkIdType b = g.BlockId(bx, by, layer);
-        const int c[3] = { bx, by, layer };
-        int n[3];
-        g.CellCounts(c, n);
-        const bool active = g.Sign[b] == 0;
-        if (!active && this->BlockState[b] != FreeBlock)
+        return;
+      }
+      const size_t base = active ? size_t(g.Slot[b]) * Rows : 0;
+      const int lk = topPlane ? n[2] : 0;
+      bool added = false, any = false;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        const unsigned bits = this->PlaneRow(plane, c, lj, n[0]);
+        any = any || bits != 0;
+        if (active && bits)
         {
-          continue;
-        }
-        const int lk = topPlane ? n[2] : 0;
-        bool added = false, any = false;
-        for (int lj = 0; lj <= n[1]; ++lj)
-        {
-          const unsigned char* in =
-            plane.data() + size_t(by * BlockCells + lj) * g.Dims[0] + bx * BlockCells;
-          unsigned bits = 0;
-          for (int li = 0; li <= n[0]; ++li)
-          {
-            bits |= unsigned(in[li] != 0) << li;
-          }
-          any = any || bits != 0;
-          if (active && bits)
-          {
-            const int r = lk * BlockPoints + lj;
-            const size_t base = size_t(g.Slot[b]) * Rows;
-            const unsigned add =
-              bits & this->Free.GetPointer()[base + r] & ~LoadRow(this->Reached.GetPointer() + base + r);
-            if (add && AddToRow(this->Reached.GetPointer() + base + r, add))
-            {
-              added = true;
-            }
-          }
-        }
-        if (active && added)
-        {
-          push.Push(b);
-        }
-        else if (!active && any)
-        {
-          this->ReachSkipped(b, push);
+          std::uint16_t* row = this->Reached.GetPointer() + base + lk * BlockPoints + lj;
+          const unsigned add =
+            bits & this->Free.GetPointer()[base + lk * BlockPoints + lj] & ~LoadRow(row);
+          added = (add && AddToRow(row, add)) || added;
         }
       }
+      if (active && added)
+      {
+        push.Push(b);
+      }
+      else if (!active && any)
+      {
+        this->ReachSkipped(b, push);
+      }
+    });
   }
 
 public:

@@ -20,3 +20,22 @@ def finish(exit_on_success=True):
         sys.exit(1)
     if exit_on_success:
         sys.exit(0)
+
+
+def area_and_triangles(polydata):
+    """The surface area (vtkMassProperties) and the cell count of a serial mesh."""
+    from vtkmodules.vtkFiltersCore import vtkMassProperties
+    mass = vtkMassProperties()
+    mass.SetInputData(polydata)
+    mass.Update()
+    return mass.GetSurfaceArea(), polydata.GetNumberOfCells()
+
+
+def ranks_area_and_triangles(proxy):
+    """The area (Integrate Variables) and the cell count of a proxy's output summed over
+    the MPI ranks (paraview.simple)."""
+    from paraview import servermanager
+    from paraview.simple import IntegrateVariables
+    integrated = servermanager.Fetch(IntegrateVariables(Input=proxy))
+    return (integrated.GetCellData().GetArray("Area").GetValue(0),
+            proxy.GetDataInformation().GetNumberOfCells())
