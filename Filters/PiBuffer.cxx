@@ -6,10 +6,6 @@
 #include <utility>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 namespace pisurf
 {
 namespace
@@ -69,9 +65,7 @@ void* AllocateLarge(std::size_t bytes)
   {
     return nullptr;
   }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  ::madvise(data, rounded, MADV_HUGEPAGE);
-#endif
+  // (Not advised to transparent huge pages: see AllocateLarge's documentation.)
   try
   {
     std::lock_guard<std::mutex> lock(cache.Mutex);

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file PiBuffer.h
- * @brief arrays left uninitialized when allocated, in huge pages when large
+ * @brief arrays left uninitialized when allocated, large blocks kept for reuse
  *
  * For big work arrays that a parallel pass fills completely: their pages are first
  * touched (and zeroed by the kernel) by the threads that write them, not zeroed once
- * more by one thread as std::vector's resize would; from 512 KiB on they are 2 MiB-aligned
- * and advised to transparent huge pages (AllocateLarge). PiLargeArrays.h gives VTK's
- * output arrays the same memory.
+ * more by one thread as std::vector's resize would; from 512 KiB on they come in 2 MiB
+ * size classes, and blocks given back are kept for the next execution (AllocateLarge).
+ * PiLargeArrays.h gives VTK's output arrays the same memory.
  */
 #ifndef PiBuffer_h
 #define PiBuffer_h
@@ -22,16 +22,24 @@
 namespace pisurf
 {
 /// Memory for a large array that is written once, from its first byte: from 512 KiB on,
-/// aligned to 2 MiB and backed by transparent huge pages where the kernel offers them
-/// (Linux with THP in "madvise" mode, as on Debian). Every first touch of a 4 KiB page
-/// is a fault that the kernel serves by zeroing it; in a virtual machine each costs
-/// several microseconds: a 128 MiB grid faulted 32 768 times, two thirds of
-/// vtkPiSampleFunction's time at 256³, and a few megabytes of mesh arrays, a tenth of
-/// vtkPiFlyingEdges'. With huge pages that is one fault per 2 MiB. Only a hint: where
-/// the kernel declines, or elsewhere than Linux, this is plain aligned memory.
+/// rounded up to a multiple of 2 MiB (the size classes of the reuse below) and aligned
+/// to it, in the kernel's ordinary 4 KiB pages. Every first touch of a page is a fault
+/// that the kernel serves by zeroing it.
 ///
-/// Even in huge pages the kernel still zeroes every fresh page (about a tenth of a
-/// second per 100 MB here: an all-hits cast's output). So large blocks given back with
+/// These blocks were advised to transparent huge pages until 2026-12-01 (one fault per
+/// 2 MiB). On the 2-core virtual machine the benchmarks run on, huge pages then took
+/// longer to fault in than 4 KiB pages: 1 GiB first touched at 0.36–0.92 GB/s against
+/// 1.34–1.58 GB/s. A huge page is carved from a large free block, which there is memory
+/// the guest has not touched since it booted (the host backs it on that first touch);
+/// 4 KiB pages come back from what was freed recently. First executions, huge pages
+/// against 4 KiB pages: vtkPiSampleFunction on the cup at 256³ 130–295 ms against
+/// 73–84 ms, vtkPiFlyingEdges 275–298 ms against 131–161 ms, the first all-hits cast of
+/// 10 spheres at 1024² 1.58–2.0 s against 1.35–1.52 s, Molecular Pi Surface (Local,
+/// a new filter each time) on 16 copies of 1ubq 0.80–0.94 s against 0.68–0.78 s and on
+/// 166 copies 8.8–9.4 s against 7.1–7.9 s.
+///
+/// The kernel zeroes every fresh page (about a tenth of a second per 100 MB here: an
+/// all-hits cast's output). So large blocks given back with
 /// ReleaseLarge are kept, up to LargeCacheBytes in all (oldest dropped first), and a
 /// later request of the same size class (at most twice the rounded size) takes one of
 /// them back, already faulted in: the next execution of a filter reuses its previous

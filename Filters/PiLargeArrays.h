@@ -4,10 +4,11 @@
  * @brief VTK output arrays in pisurf::AllocateLarge's memory
  *
  * Output arrays that a filter fills completely right after allocating them (a sampled
- * grid, a mesh's points, normals and cells): in huge pages from 512 KiB on, so that
- * filling them does not fault every 4 KiB page in (see pisurf::AllocateLarge). The
- * array owns the memory and gives it back with pisurf::ReleaseLarge, which keeps it for
- * the next execution's arrays (up to pisurf::LargeCacheBytes of idle memory).
+ * grid, a mesh's points, normals and cells): uninitialized, from 512 KiB on in blocks
+ * that pisurf::ReleaseLarge keeps for the next execution's arrays (up to
+ * pisurf::LargeCacheBytes of idle memory), so that a re-execution writes memory that is
+ * already faulted in (see pisurf::AllocateLarge). The array owns the memory and gives
+ * it back with pisurf::ReleaseLarge.
  */
 #ifndef PiLargeArrays_h
 #define PiLargeArrays_h

@@ -105,7 +105,7 @@ std::vector<double> FactorKey(const pisurf::PolynomialFactor& f)
 struct vtkPiFlyingEdges::vtkInternals
 {
   // The active blocks' values, grown (never shrunk) as executions need: uninitialized
-  // (the sample pass writes every value) and in huge pages (pisurf::AllocateLarge).
+  // (the sample pass writes every value; pisurf::AllocateLarge).
   pisurf::Buffer<double> Values;
   // The rows the active blocks need and their factors' restrictions (kept between
   // executions, like Values, so that a re-execution does not fault their pages in again).
@@ -118,8 +118,8 @@ struct vtkPiFlyingEdges::vtkInternals
   // points, row signs, crossing-edge masks and offsets; per vertex: edge key, crossing
   // parameter, end values), kept between
   // executions below WorkLimit bytes in all: a re-execution then writes memory that is
-  // already mapped (at 256³ the cup's contouring faulted ~20 MB of huge pages in each
-  // time, a tenth of its time with two threads). Larger ones are released after use.
+  // already mapped (at 256³ the cup's contouring faulted ~20 MB in each time, a tenth
+  // of its time with two threads). Larger ones are released after use.
   pisurf::Buffer<vtkIdType> VertexEdge;
   pisurf::Buffer<double> VertexT, VertexEnds;
   pisurf::Buffer<std::uint16_t> RowSigns, EdgeOffsets;

@@ -37,7 +37,7 @@ int TestPiLargeMemory(int, char*[])
   Check(a != nullptr, "3 MiB allocated");
   std::memset(a, 1, 3 * MiB);
   pisurf::ReleaseLarge(a);
-  Check(pisurf::KeptLargeBytes() == 4 * MiB, "a 3 MiB request is kept as its 4 MiB of huge pages");
+  Check(pisurf::KeptLargeBytes() == 4 * MiB, "a 3 MiB request is kept as its 4 MiB size class");
   void* b = pisurf::AllocateLarge(4 * MiB);
   Check(b == a, "a request of the same rounded size takes the kept block");
   Check(pisurf::KeptLargeBytes() == 0, "the block is no longer kept once handed out");
