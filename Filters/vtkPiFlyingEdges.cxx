@@ -3010,16 +3010,14 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
     }
   }
-  if (tooManyRows)
-  {
-    // (A distributed piece skips its work to tell the others below.)
-  }
-  else if (kernel && caches.empty())
+  // (A distributed piece over the cap skips its restriction and sampling, then tells the
+  // other pieces below.)
+  if (!tooManyRows && kernel && caches.empty())
   {
     RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
     PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
-  else if (kernel)
+  else if (!tooManyRows && kernel)
   {
     RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
     PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
@@ -3035,16 +3033,13 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   g.Values = this->Internals->Values.GetPointer();
   std::atomic<bool> abort{ false };
-  if (tooManyRows)
-  {
-  }
-  else if (kernel && kernel->IsPolynomial())
+  if (!tooManyRows && kernel && kernel->IsPolynomial())
   {
     SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
     sample.Prepare();
     PiFor(0, static_cast<vtkIdType>(rows.size()), 64, sample);
   }
-  else
+  else if (!tooManyRows)
   {
     SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
     PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
