@@ -10,7 +10,8 @@ namespace pisurf
 {
 namespace
 {
-constexpr std::size_t Huge = std::size_t(1) << 21;
+// The size classes of large blocks (AllocateLarge rounds a request up to a multiple).
+constexpr std::size_t SizeClass = std::size_t(1) << 21;
 
 // Every live or kept block of AllocateLarge's large path, with its capacity, and the
 // kept ones, oldest first. Made on first use and never destroyed: VTK arrays may give
@@ -32,12 +33,11 @@ LargeCache& Cache()
 
 void* AllocateLarge(std::size_t bytes)
 {
-  if (bytes < Huge / 4)
+  if (bytes < SizeClass / 4)
   {
     return std::malloc(bytes > 0 ? bytes : 1);
   }
-#if defined(__unix__) || defined(__APPLE__)
-  const std::size_t rounded = (bytes + Huge - 1) & ~(Huge - 1);
+  const std::size_t rounded = (bytes + SizeClass - 1) & ~(SizeClass - 1);
   LargeCache& cache = Cache();
   {
     // The smallest kept block that holds the request and is at most twice its size.
@@ -60,12 +60,13 @@ void* AllocateLarge(std::size_t bytes)
       return data;
     }
   }
-  void* data = nullptr;
-  if (::posix_memalign(&data, Huge, rounded) != 0)
+  // (In ordinary pages, not advised to transparent huge pages: see AllocateLarge's
+  // documentation.)
+  void* data = std::malloc(rounded);
+  if (!data)
   {
     return nullptr;
   }
-  // (Not advised to transparent huge pages: see AllocateLarge's documentation.)
   try
   {
     std::lock_guard<std::mutex> lock(cache.Mutex);
@@ -78,9 +79,6 @@ void* AllocateLarge(std::size_t bytes)
     // Not recorded (out of memory for the table): ReleaseLarge will simply free it.
   }
   return data;
-#else
-  return std::malloc(bytes);
-#endif
 }
 
 void ReleaseLarge(void* data)

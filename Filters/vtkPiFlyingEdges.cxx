@@ -1041,7 +1041,7 @@ public:
       this->G.BlockCoordinates(b, c);
       const bool boundary = c[0] == 0 || c[1] == 0 || c[2] == 0 || c[0] == count[0] - 1 ||
         c[1] == count[1] - 1 || c[2] == count[2] - 1;
-      if (!boundary || c[2] < this->FloodBegin || c[2] >= this->FloodEnd)
+      if (!boundary || !this->FloodsLayer(c[2]))
       {
         continue;
       }
@@ -1215,15 +1215,15 @@ private:
     }
   }
 
-  // Whether the flood enters block b (its layer is flooded).
+  // Whether the flood enters the blocks of layer z, and block b.
+  bool FloodsLayer(vtkIdType z) const { return z >= this->FloodBegin && z < this->FloodEnd; }
   bool Floods(vtkIdType b) const
   {
     if (this->FloodBegin == 0 && this->FloodEnd >= this->G.Count[2])
     {
       return true; // (every layer: no division)
     }
-    const vtkIdType layer = b / (vtkIdType(this->G.Count[0]) * this->G.Count[1]);
-    return layer >= this->FloodBegin && layer < this->FloodEnd;
+    return this->FloodsLayer(b / (vtkIdType(this->G.Count[0]) * this->G.Count[1]));
   }
 
   // f(block id, its cell counts n) for each block of layer `layer`.
@@ -1436,8 +1436,7 @@ private:
       {
         int m[3] = { c[0], c[1], c[2] };
         m[a] += side ? 1 : -1;
-        if (m[a] < 0 || m[a] >= count[a] ||
-          (a == 2 && (m[2] < this->FloodBegin || m[2] >= this->FloodEnd)))
+        if (m[a] < 0 || m[a] >= count[a] || (a == 2 && !this->FloodsLayer(m[2])))
         {
           continue;
         }
@@ -2762,8 +2761,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // mode). Otherwise (several pieces in one process, with OuterEnvelope) every piece
   // classifies and samples the whole grid, as the envelope is a global property.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const bool distributed = pieces > 1 && this->OuterEnvelope && controller && controller->GetNumberOfProcesses() == pieces &&
-    controller->GetLocalProcessId() == piece;
+  const bool distributed = pieces > 1 && this->OuterEnvelope && controller &&
+    controller->GetNumberOfProcesses() == pieces && controller->GetLocalProcessId() == piece;
   const bool slabOnly = pieces > 1 && (!this->OuterEnvelope || distributed);
   const int classifyBegin =
     slabOnly ? std::max(0, slabBegin - (this->OuterEnvelope ? 1 : 0)) : 0;

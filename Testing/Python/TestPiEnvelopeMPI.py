@@ -7,11 +7,10 @@ rounds of exchanges); formic acid's two interior shells must be left out on ever
 The union of the ranks' meshes must be the serial mesh: the same triangles and area."""
 import os
 
-from pitesting import area_and_triangles, check, finish, ranks_area_and_triangles
+from pitesting import area_and_triangles, check, finish, ranks_area_and_triangles, serial_model_mesh
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
-from pisurfaces import vtkPiSurfaceModelReader
 from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter
 
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -20,10 +19,7 @@ check(ranks == 4, "running on 4 ranks (got %d)" % ranks)
 models = os.environ["PISURF_MODELS_DIR"]
 for name, components in (("cup_a1.0", 1), ("formic_acid", 1)):
     path = os.path.join(models, name + ".pisurf")
-    serial = vtkPiSurfaceModelReader()
-    serial.SetFileName(path)
-    serial.SetResolution(96)
-    serial.Update()
+    serial = serial_model_mesh(path, 96)
     serial_area, serial_cells = area_and_triangles(serial.GetOutput())
     # (What the envelope leaves: the outer sheet alone.)
     connectivity = vtkPolyDataConnectivityFilter()

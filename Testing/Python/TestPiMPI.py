@@ -2,11 +2,10 @@
 union has the serial mesh's area and triangle count."""
 import os
 
-from pitesting import area_and_triangles, check, finish, ranks_area_and_triangles
+from pitesting import area_and_triangles, check, finish, ranks_area_and_triangles, serial_model_mesh
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
-from pisurfaces import vtkPiSurfaceModelReader
 
 
 
@@ -17,10 +16,7 @@ models = os.environ["PISURF_MODELS_DIR"]
 for name in ("formic_acid", "cup_a1.0"):
     path = os.path.join(models, name + ".pisurf")
     # The serial reference, in this process alone.
-    serial = vtkPiSurfaceModelReader()
-    serial.SetFileName(path)
-    serial.SetResolution(96)
-    serial.Update()
+    serial = serial_model_mesh(path, 96)
     serial_area, serial_cells = area_and_triangles(serial.GetOutput())
 
     reader = PiSurfaceModelReader(FileName=path, Resolution=96)
@@ -37,11 +33,7 @@ for name in ("formic_acid", "cup_a1.0"):
 # Method = Ray Cast Triangulation: the ray lattice is not split, the first piece holds the
 # whole mesh and the other is empty, so the union is the serial mesh once.
 path = os.path.join(models, "cup_a1.0.pisurf")
-serial = vtkPiSurfaceModelReader()
-serial.SetFileName(path)
-serial.SetResolution(64)
-serial.SetMethod(1)
-serial.Update()
+serial = serial_model_mesh(path, 64, method=1)
 serial_cells = serial.GetOutput().GetNumberOfCells()
 ray = PiSurfaceModelReader(FileName=path, Resolution=64, Method="Ray Cast Triangulation")
 ray.UpdatePipeline()

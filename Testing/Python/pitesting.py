@@ -39,3 +39,15 @@ def ranks_area_and_triangles(proxy):
     integrated = servermanager.Fetch(IntegrateVariables(Input=proxy))
     return (integrated.GetCellData().GetArray("Area").GetValue(0),
             proxy.GetDataInformation().GetNumberOfCells())
+
+
+def serial_model_mesh(path, resolution, method=0):
+    """A vtkPiSurfaceModelReader of `path` at `resolution` (Method `method`), updated in
+    this process alone: the serial reference of the MPI tests."""
+    from pisurfaces import vtkPiSurfaceModelReader
+    reader = vtkPiSurfaceModelReader()
+    reader.SetFileName(path)
+    reader.SetResolution(resolution)
+    reader.SetMethod(method)
+    reader.Update()
+    return reader
