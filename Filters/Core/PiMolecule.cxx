@@ -540,17 +540,21 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   if (this->Settings.Mode == MoleculeMode::Local)
   {
     const size_t n = this->Radii.size();
-    this->R2.resize(n);
-    this->Rho2.resize(n);
-    this->InvSpan.resize(n);
+    this->Atoms.resize(n);
     for (size_t i = 0; i < n; ++i)
     {
+      LocalAtom& atom = this->Atoms[i];
       const double rho = this->Radii[i] + this->Settings.InfluenceRadius;
-      this->R2[i] = this->Radii[i] * this->Radii[i];
-      this->Rho2[i] = rho * rho;
+      for (int k = 0; k < 3; ++k)
+      {
+        atom.C[k] = this->Centers[3 * i + k];
+      }
+      atom.R = this->Radii[i];
+      atom.R2 = this->Radii[i] * this->Radii[i];
+      atom.Rho2 = rho * rho;
       // Finite even where ρ = R in doubles (an influence radius below rounding): every
       // use multiplies it by f or by w'(u), which vanishes where u is clamped.
-      this->InvSpan[i] = std::min(1e300, 1.0 / (this->Rho2[i] - this->R2[i]));
+      atom.InverseSpan = std::min(1e300, 1.0 / (atom.Rho2 - atom.R2));
     }
   }
 }
@@ -678,7 +682,7 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
     for (int i : cell.Near)
     {
       // A relative slack far above rounding: an atom too many costs one test.
-      if (Distance2ToBox(&this->Centers[3 * i], box) < this->R2[i] * (1.0 + 1e-9))
+      if (Distance2ToBox(&this->Centers[3 * i], box) < this->Atoms[i].R2 * (1.0 + 1e-9))
       {
         cell.Inner.push_back(i);
       }
@@ -863,9 +867,10 @@ double MoleculeField::ComputeLocal(const Cell* cell, const double p[3]) const
     const double* c = centers + 3 * i;
     const double v0 = p[0] - c[0], v1 = p[1] - c[1], v2 = p[2] - c[2];
     const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-    if (d2 < this->Rho2[i]) // (beyond ρ, g = 1)
+    const LocalAtom& atom = this->Atoms[i];
+    if (d2 < atom.Rho2) // (beyond ρ, g = 1)
     {
-      product *= LocalTerm(d2, this->R2[i], this->Rho2[i], this->InvSpan[i]);
+      product *= LocalTerm(d2, atom.R2, atom.Rho2, atom.InverseSpan);
     }
   }
   return product - this->Level;
@@ -1181,7 +1186,7 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   thread_local std::vector<int> atoms;
   atoms.clear();
   this->ForAtomsNear(points.Box, this->MaxReach, [&](int i) {
-    if (Distance2ToBox(&this->Centers[3 * i], points.Box) < this->Rho2[i] * (1.0 + 1e-9))
+    if (Distance2ToBox(&this->Centers[3 * i], points.Box) < this->Atoms[i].Rho2 * (1.0 + 1e-9))
     {
       atoms.push_back(i);
     }
@@ -1199,7 +1204,8 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   for (int i : atoms)
   {
     const double* c = &this->Centers[3 * i];
-    const double rho2 = this->Rho2[i], r2 = this->R2[i], inverse = this->InvSpan[i];
+    const LocalAtom& atom = this->Atoms[i];
+    const double rho2 = atom.Rho2, r2 = atom.R2, inverse = atom.InverseSpan;
     const double cx = c[0];
     points.ForRowsNear(c, rho2, [&](int k, int j, int lo, int hi, double v1, double v2) {
       // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the atom
@@ -1272,10 +1278,10 @@ namespace
 // Each candidate is written in any case and kept (the count advanced) only if it
 // reaches: no branch to mispredict. (A function of its own with restrict pointers: as a
 // lambda over references, every store reloaded the count and the array pointers.)
-int GatherReaching(const int* candidates, size_t n, const double* centers, const double* r2,
-  const double* rho2, const double* invSpan, const double a[3], int axis, double lower,
-  double upper, int* __restrict ids, double* __restrict K, double* __restrict W,
-  double* __restrict R2, double* __restrict Rho2, double* __restrict Inverse)
+int GatherReaching(const int* candidates, size_t n, const LocalAtom* atoms, const double a[3],
+  int axis, double lower, double upper, int* __restrict ids, double* __restrict K,
+  double* __restrict W, double* __restrict R2, double* __restrict Rho2,
+  double* __restrict Inverse)
 {
   const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
   const double a1 = a[u1], a2 = a[u2], aa = a[axis];
@@ -1283,18 +1289,19 @@ int GatherReaching(const int* candidates, size_t n, const double* centers, const
   for (size_t m = 0; m < n; ++m)
   {
     const int i = candidates[m];
-    const double* c = centers + 3 * i;
+    const LocalAtom& atom = atoms[i];
+    const double* c = atom.C;
     const double x1 = a1 - c[u1], x2 = a2 - c[u2];
     const double across = x1 * x1 + x2 * x2;
     const double below = lower - c[axis], above = c[axis] - upper;
     const double along = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
-    const double reach = rho2[i];
+    const double reach = atom.Rho2;
     ids[count] = i;
     K[count] = across;
     W[count] = aa - c[axis];
-    R2[count] = r2[i];
+    R2[count] = atom.R2;
     Rho2[count] = reach;
-    Inverse[count] = invSpan[i];
+    Inverse[count] = atom.InverseSpan;
     count += across + along * along < reach * (1.0 + 1e-9);
   }
   return count;
@@ -1377,9 +1384,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     candidateCount = static_cast<size_t>(
       std::set_union(p.begin(), p.end(), q.begin(), q.end(), merged.begin()) - merged.begin());
   }
-  const int count = GatherReaching(candidates, candidateCount, this->Centers.data(),
-    this->R2.data(), this->Rho2.data(), this->InvSpan.data(), a, axis, lower, upper, ids, K, W,
-    R2, Rho2, Inverse);
+  const int count = GatherReaching(candidates, candidateCount, this->Atoms.data(), a, axis,
+    lower, upper, ids, K, W, R2, Rho2, Inverse);
   // F on the segment and its derivative in s (LocalFactor: the same g as AtomFactor,
   // without branches).
   const double delta = b[axis] - a[axis];
@@ -1530,26 +1536,27 @@ void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t coun
   for (size_t m = 0; m < count; ++m)
   {
     const int i = atoms[m];
-    const double* c = &this->Centers[3 * i];
+    const LocalAtom& atom = this->Atoms[i];
+    const double* c = atom.C;
     const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
     const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (inside && this->Level > 0 && d2 < this->Radii[i] * this->Radii[i])
+    if (inside && this->Level > 0 && d2 < atom.R * atom.R)
     {
       *inside = true; // OffOuterSide's test
     }
-    if (d2 >= this->Rho2[i])
+    if (d2 >= atom.Rho2)
     {
       continue;
     }
     // g and ∇g = (dg/df)·2v, AtomFactor's values without its branches and division.
     double slope;
-    const double g = LocalFactor(d2 - this->R2[i], this->InvSpan[i], slope);
+    const double g = LocalFactor(d2 - atom.R2, atom.InverseSpan, slope);
     for (int k = 0; k < 3; ++k)
     {
       grad[k] = grad[k] * g + product * 2.0 * slope * v[k];
     }
     product *= g;
-    const double distance = std::fabs(std::sqrt(d2) - this->Radii[i]);
+    const double distance = std::fabs(std::sqrt(d2) - atom.R);
     if (distance < best)
     {
       best = distance;
@@ -1774,8 +1781,8 @@ struct MoleculeField::RaySearch
         v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - R2, 0.0, 0.0 };
       if (this->Local)
       {
-        atom.Span = this->M.Rho2[i] - this->M.R2[i];
-        atom.InverseSpan = this->M.InvSpan[i];
+        atom.Span = this->M.Atoms[i].Rho2 - this->M.Atoms[i].R2;
+        atom.InverseSpan = this->M.Atoms[i].InverseSpan;
       }
       out.push_back(atom);
     }
