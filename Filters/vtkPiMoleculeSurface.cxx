@@ -482,7 +482,7 @@ int vtkPiMoleculeSurface::RequestData(
   mesher->SetBounds(bounds);
   mesher->SetSampleDimensions(dims);
   mesher->SetOuterEnvelope(this->OuterEnvelope);
-  mesher->SetProjectVertices(true);
+  mesher->SetProjectVertices(this->ProjectVertices);
   mesher->SetGeneratePrimitives(false);
   // Forward the mesher's complaints (a grid too large, an empty mesh) as ours.
   vtkNew<vtkCallbackCommand> forward;
@@ -616,5 +616,6 @@ void vtkPiMoleculeSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InfluenceRadius: " << this->InfluenceRadius << "\n";
   os << indent << "Spacing: " << this->Spacing << "\n";
   os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
   os << indent << "LastSpacing: " << this->LastSpacing << "\n";
 }

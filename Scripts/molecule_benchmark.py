@@ -4,7 +4,8 @@ vtkGaussianSplatter / vtkCheckerboardSplatter + vtkFlyingEdges3D on the same gri
 
 Rows: 1ubq Global at 0.5 A; 1a0q (3301 atoms) Local at 0.25 A; synthetic clusters of
 copies of ubiquitin (1ubq without waters, 602 atoms, copies on a 40 A lattice, each
-rotated) Local at 0.5 A, from ~10^3 to ~10^5 atoms (Global too up to ~10^4). Run with pvpython (the plugin's
+rotated) Local at 0.5 A, from ~10^3 to ~10^5 atoms (Global too up to ~10^4); the largest
+again with ProjectVertices off (linear vertices, as flying edges places them). Run with pvpython (the plugin's
 Python package on PYTHONPATH); threads: both vtkSMPTools backends.
 
 Then Pi Ray Cast downstream of the molecular surface: the molecule path (the field rebuilt
@@ -59,11 +60,12 @@ def cluster(base, copies):
     return m
 
 
-def pi_surface(molecule, mode, spacing):
+def pi_surface(molecule, mode, spacing, project=True):
     f = vtkPiMoleculeSurface()
     f.SetInputData(molecule)
     f.SetMode(mode)
     f.SetSpacing(spacing)
+    f.SetProjectVertices(project)
     t = time.perf_counter()
     f.Update()
     return time.perf_counter() - t, f.GetOutput()
@@ -116,23 +118,27 @@ def main():
     ubq = read('1ubq.pdb')
     rows = []
     backends = ['Sequential', 'STDThread']
-    cases = [('1ubq', ubq, 0, 0.5), ('1a0q', read('1a0q.pdb'), 1, 0.25)]
-    for copies in ([2, 16] if quick else [2, 16, 166]):
+    cases = [('1ubq', ubq, 0, 0.5, True), ('1a0q', read('1a0q.pdb'), 1, 0.25, True)]
+    sizes = [2, 16] if quick else [2, 16, 166]
+    for copies in sizes:
         m = largest = cluster(ubq, copies)
-        cases.append(('%d x 1ubq' % copies, m, 1, 0.5))
+        cases.append(('%d x 1ubq' % copies, m, 1, 0.5, True))
         if copies <= 16:
-            cases.append(('%d x 1ubq' % copies, m, 0, 0.5))  # Global scaling
+            cases.append(('%d x 1ubq' % copies, m, 0, 0.5, True))  # Global scaling
+    # The largest again with ProjectVertices off: linear vertices, as flying edges'.
+    cases.append(('%d x 1ubq' % sizes[-1], largest, 1, 0.5, False))
     print('| molecule | atoms | mode | spacing | backend | Pi surface | triangles | Gaussian splatter + FE | Checkerboard splatter + FE | Pi vs Gaussian | Pi vs Checkerboard | Pi us/atom |')
     print('|---|---|---|---|---|---|---|---|---|---|---|---|')
-    for name, m, mode, spacing in cases:
+    for name, m, mode, spacing, project in cases:
         for backend in backends:
             vtkSMPTools.SetBackend(backend)
-            tp, out = pi_surface(m, mode, spacing)
+            tp, out = pi_surface(m, mode, spacing, project)
             tg, _, dims = splat(m, spacing, 'gaussian')
             tc, _, _ = splat(m, spacing, 'checkerboard')
             n = m.GetNumberOfAtoms()
             print('| %s | %d | %s | %.2f | %s | %.2f s | %d | %.2f s | %.2f s | %.2fx | %.2fx | %.1f |' % (
-                name, n, 'Global' if mode == 0 else 'Local', spacing, backend, tp,
+                name, n, ('Global' if mode == 0 else 'Local') + ('' if project else ', linear vertices'),
+                spacing, backend, tp,
                 out.GetNumberOfCells(), tg, tc, tg / tp, tc / tp, 1e6 * tp / n))
             sys.stdout.flush()
     return ubq, largest  # for the ray-casting table

@@ -318,6 +318,42 @@ int RayCastDownstream()
       std::cerr << "  sampled field: " << contour->GetOutput()->GetNumberOfCells()
                 << " triangles, the mesher " << sheets->GetOutput()->GetNumberOfCells() << "\n";
     }
+    // ProjectVertices off: the vertices are where flying edges puts them on the same
+    // samples (the linear interpolation along each edge), up to the float rounding of
+    // its points; on, the exact roots lie visibly off it somewhere.
+    vtkNew<vtkPiMoleculeSurface> plain;
+    plain->SetInputConnection(reader->GetOutputPort());
+    plain->SetMode(vtkPiMoleculeSurface::LOCAL);
+    plain->SetSpacing(0.5);
+    plain->OuterEnvelopeOff();
+    plain->ProjectVerticesOff();
+    plain->Update();
+    vtkNew<vtkStaticPointLocator> onContour;
+    onContour->SetDataSet(contour->GetOutput());
+    onContour->BuildLocator();
+    auto farthest = [&](vtkPolyData* m) {
+      double worst = 0.0;
+      for (vtkIdType i = 0; i < m->GetNumberOfPoints(); ++i)
+      {
+        double p[3], q[3];
+        m->GetPoint(i, p);
+        contour->GetOutput()->GetPoint(onContour->FindClosestPoint(p), q);
+        worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
+      }
+      return worst;
+    };
+    const double plainOff = farthest(plain->GetOutput());
+    const double exactOff = farthest(sheets->GetOutput());
+    PI_CHECK(plain->GetOutput()->GetNumberOfCells() == contour->GetOutput()->GetNumberOfCells());
+    PI_CHECK(plain->GetOutput()->GetNumberOfPoints() == contour->GetOutput()->GetNumberOfPoints());
+    PI_CHECK(plainOff < 1e-4 && exactOff > 1e-3);
+    if (!(plainOff < 1e-4 && exactOff > 1e-3))
+    {
+      std::cerr << "  farthest vertex from flying edges': " << plainOff
+                << " A (ProjectVertices off), " << exactOff << " A (on)\n";
+    }
+    vtkDataArray* plainNormals = plain->GetOutput()->GetPointData()->GetArray("Normals");
+    PI_CHECK(plainNormals && std::fabs(vtkMath::Norm(plainNormals->GetTuple3(0)) - 1.0) < 1e-6);
     vtkNew<vtkPolyData> bad;
     bad->ShallowCopy(mesh);
     vtkNew<vtkFieldData> fd;

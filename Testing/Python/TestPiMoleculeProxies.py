@@ -28,7 +28,7 @@ check(reader.Model == 1 and reader.IncludeHydrogens == 1 and reader.IncludeWater
 surface = MolecularPiSurface(Input=reader)
 check(surface.Mode == 'Global' and surface.RadiusTable == 'Bondi' and surface.Blending == 1
       and surface.RadiusScale == 1 and surface.InfluenceRadius == 2 and surface.Spacing == 0
-      and surface.OuterEnvelope == 1, 'filter defaults')
+      and surface.OuterEnvelope == 1 and surface.ProjectVertices == 1, 'filter defaults')
 
 # XML defaults equal the C++ defaults.
 from pisurfaces import vtkPiMoleculeReader, vtkPiMoleculeSurface
@@ -37,7 +37,7 @@ check(cr.GetModel() == 1 and cr.GetIncludeHydrogens() and not cr.GetIncludeWater
       and cr.GetIncludeHetatm(), 'C++ reader defaults')
 check(cs.GetMode() == 0 and cs.GetRadiusTable() == 0 and cs.GetBlending() == 1
       and cs.GetRadiusScale() == 1 and cs.GetInfluenceRadius() == 2 and cs.GetSpacing() == 0
-      and cs.GetOuterEnvelope(), 'C++ filter defaults')
+      and cs.GetOuterEnvelope() and cs.GetProjectVertices(), 'C++ filter defaults')
 
 surface.Spacing = 0.5
 surface.UpdatePipeline()
@@ -47,7 +47,20 @@ check(mesh.GetPointData().GetArray('AtomicNumber') is not None, 'AtomicNumber')
 check(mesh.GetFieldData().GetAbstractArray('PiSurfaceModel') is not None, 'PiSurfaceModel')
 surface.Mode = 'Local'
 surface.UpdatePipeline()
-check(servermanager.Fetch(surface).GetNumberOfCells() > 50000, '1ubq Local mesh')
+local = servermanager.Fetch(surface)
+check(local.GetNumberOfCells() > 50000, '1ubq Local mesh')
+# ProjectVertices off (the preview): the same triangles, but linear vertices, so the
+# area is larger (the exact surface bends inwards between grid points near the atoms).
+surface.ProjectVertices = 0
+surface.UpdatePipeline()
+plain = servermanager.Fetch(surface)
+exactArea = local.GetFieldData().GetArray('SurfaceArea').GetValue(0)
+plainArea = plain.GetFieldData().GetArray('SurfaceArea').GetValue(0)
+check(plain.GetNumberOfCells() == local.GetNumberOfCells()
+      and 1.02 * exactArea < plainArea < 1.10 * exactArea,
+      'ProjectVertices off: %d / %d triangles, area %.1f against %.1f'
+      % (plain.GetNumberOfCells(), local.GetNumberOfCells(), plainArea, exactArea))
+surface.ProjectVertices = 1
 
 # Pi Ray Cast downstream of the Local surface (no polynomial model: the molecule's own
 # field): the -Z view's first hits cover the protein's silhouette, each on the mesh.
