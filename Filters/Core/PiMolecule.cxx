@@ -1527,27 +1527,44 @@ void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t coun
   // Plain doubles (see ComputeLocal); only atoms within their ρ change the product, and
   // the nearest sphere is among them (F = 0 needs some g_i != 1, and an atom beyond ρ is
   // farther than InfluenceRadius from its sphere).
-  double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
-  nearest = -1;
-  if (inside)
+  // In two passes without data-dependent branches (whether an atom is within its ρ
+  // follows no pattern): the atoms within their ρ of p are kept first, then only they
+  // enter the product, in the same order (the same bits as skipping the others).
+  thread_local std::vector<int> kept;
+  thread_local std::vector<double> keptD2;
+  if (kept.size() < count)
   {
-    *inside = false;
+    kept.resize(count);
+    keptD2.resize(count);
   }
+  int* const ids = kept.data();
+  double* const squares = keptD2.data();
+  size_t near = 0;
+  bool within = false;
   for (size_t m = 0; m < count; ++m)
   {
     const int i = atoms[m];
     const LocalAtom& atom = this->Atoms[i];
+    const double v0 = p[0] - atom.C[0], v1 = p[1] - atom.C[1], v2 = p[2] - atom.C[2];
+    const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
+    within |= d2 < atom.R * atom.R; // OffOuterSide's test
+    ids[near] = i;
+    squares[near] = d2;
+    near += d2 < atom.Rho2;
+  }
+  if (inside)
+  {
+    *inside = this->Level > 0 && within;
+  }
+  double product = 1.0, grad[3] = { 0, 0, 0 }, best = HUGE_VAL;
+  nearest = -1;
+  for (size_t m = 0; m < near; ++m)
+  {
+    const int i = ids[m];
+    const LocalAtom& atom = this->Atoms[i];
     const double* c = atom.C;
     const double v[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
-    const double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (inside && this->Level > 0 && d2 < atom.R * atom.R)
-    {
-      *inside = true; // OffOuterSide's test
-    }
-    if (d2 >= atom.Rho2)
-    {
-      continue;
-    }
+    const double d2 = squares[m];
     // g and ∇g = (dg/df)·2v, AtomFactor's values without its branches and division.
     double slope;
     const double g = LocalFactor(d2 - atom.R2, atom.InverseSpan, slope);
@@ -1557,11 +1574,9 @@ void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t coun
     }
     product *= g;
     const double distance = std::fabs(std::sqrt(d2) - atom.R);
-    if (distance < best)
-    {
-      best = distance;
-      nearest = i;
-    }
+    const bool better = distance < best;
+    nearest = better ? i : nearest;
+    best = better ? distance : best;
   }
   const double norm = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
   gradientNorm = std::isfinite(norm) ? norm : 0.0;
