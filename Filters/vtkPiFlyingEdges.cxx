@@ -1241,12 +1241,17 @@ private:
       }
   }
 
-  // The plane's points (one byte each, at j·Dims[0] + i) of row lj of block c's plane, as
-  // a row mask of n0 + 1 bits.
+  // Where row lj of block c's part of a plane starts in ReadPlane's layout (one byte per
+  // point, at j·Dims[0] + i).
+  size_t PlaneOffset(const int c[3], int lj) const
+  {
+    return size_t(c[1] * BlockCells + lj) * this->G.Dims[0] + c[0] * BlockCells;
+  }
+
+  // The plane's points of row lj of block c's plane, as a row mask of n0 + 1 bits.
   unsigned PlaneRow(const std::vector<unsigned char>& plane, const int c[3], int lj, int n0) const
   {
-    const unsigned char* in =
-      plane.data() + size_t(c[1] * BlockCells + lj) * this->G.Dims[0] + c[0] * BlockCells;
+    const unsigned char* in = plane.data() + this->PlaneOffset(c, lj);
     unsigned bits = 0;
     for (int li = 0; li <= n0; ++li)
     {
@@ -1273,8 +1278,7 @@ private:
       for (int lj = 0; lj <= n[1]; ++lj)
       {
         const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
-        unsigned char* out =
-          plane.data() + size_t(c[1] * BlockCells + lj) * g.Dims[0] + c[0] * BlockCells;
+        unsigned char* out = plane.data() + this->PlaneOffset(c, lj);
         for (int li = 0; li <= n[0]; ++li)
         {
           out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
@@ -3011,37 +3015,44 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
   // (A distributed piece over the cap skips its restriction and sampling, then tells the
   // other pieces below.)
-  if (!tooManyRows && kernel && caches.empty())
+  if (!tooManyRows && kernel)
   {
-    RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
-    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
-  }
-  else if (!tooManyRows && kernel)
-  {
-    RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
-    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    if (caches.empty())
+    {
+      RestrictRows restrict{ kernel.get(), &g, &rows, &coefficients };
+      PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    }
+    else
+    {
+      RestrictCachedRows restrict{ &g, &rows, &caches, kernel.get(), &coefficients };
+      PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    }
   }
   lap("restrict rows");
 
   // PASS 3: evaluate the points of the active blocks.
-  // Every entry is written below: no need to clear.
-  const size_t valueCount = g.Active.size() * BlockPoints * BlockPoints * BlockPoints;
-  if (this->Internals->Values.GetSize() < valueCount)
-  {
-    this->Internals->Values.Allocate(valueCount);
-  }
-  g.Values = this->Internals->Values.GetPointer();
   std::atomic<bool> abort{ false };
-  if (!tooManyRows && kernel && kernel->IsPolynomial())
+  if (!tooManyRows)
   {
-    SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
-    sample.Prepare();
-    PiFor(0, static_cast<vtkIdType>(rows.size()), 64, sample);
-  }
-  else if (!tooManyRows)
-  {
-    SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this, &abort };
-    PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
+    // Every entry is written below: no need to clear.
+    const size_t valueCount = g.Active.size() * BlockPoints * BlockPoints * BlockPoints;
+    if (this->Internals->Values.GetSize() < valueCount)
+    {
+      this->Internals->Values.Allocate(valueCount);
+    }
+    g.Values = this->Internals->Values.GetPointer();
+    if (kernel && kernel->IsPolynomial())
+    {
+      SampleRows sample{ kernel.get(), &g, &rows, &coefficients, this, &abort, {} };
+      sample.Prepare();
+      PiFor(0, static_cast<vtkIdType>(rows.size()), 64, sample);
+    }
+    else
+    {
+      SampleBlocks sample{ kernel.get(), field.get(), &g, &rowIndex, &coefficients, this,
+        &abort };
+      PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
+    }
   }
   {
     // 0: go on, 1: cancelled, 2: failed. With the pieces flooding together every
