@@ -49,7 +49,8 @@
  * third). Cameras do not stop so: their boxes reach beyond the bounds, where the
  * clipped rays do not search. An axis view's leaves also learn, from the same Taylor
  * expansions, whether F is strictly monotone along the rays on them (the product rule
- * over enclosures of each factor's derivative excludes 0); a depth range made of such
+ * over enclosures of each factor's derivative excludes 0, or the logarithmic derivative
+ * Σ ∂f_i/f_i does where at most one factor may vanish); a depth range made of such
  * leaves, all of one direction, is then decided by F's signs at the ends of each ray's
  * segment and Newton's method, without the root finder's enclosures (13 % fewer
  * instructions on the cup at 1024², 5 to 16 % on the gallery's models at 512²). Parallel

@@ -1627,7 +1627,7 @@ static int DerivativeSign(const Interval* f, const Interval* df, size_t n)
     return 0;
   }
   const double slack = 1e-9 * magnitude + 1e-290;
-  return lo > slack ? 1 : hi < -slack ? -1 : 0;
+  return lo > slack ? 1 : hi < -slack ? -1 : LogDerivativeSign(f, df, static_cast<int>(n), 1e-9);
 }
 
 int ProductKernel::ClassifyBoxAndOctants(

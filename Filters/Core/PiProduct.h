@@ -165,7 +165,9 @@ public:
   /// enclosures on the octant and of its derivative (PolynomialFactor::EvaluateTaylor,
   /// the same expansion) by the product rule ∂F = Σ ∂f_i Π_{j≠i} f_j in interval
   /// arithmetic, which must exclude 0 by 1e-9 of its terms' magnitude (far beyond the
-  /// rounding of the products and of any evaluation of F there). A segment along that
+  /// rounding of the products and of any evaluation of F there), or else by the
+  /// logarithmic derivative where at most one factor may vanish on the octant
+  /// (LogDerivativeSign: tighter with many factors, the same margin). A segment along that
   /// axis in the octant then holds at most one root of F, and one exactly where F has
   /// opposite signs at its ends.
   int ClassifyBoxAndOctants(const double box[6], int octants[8], bool allOctants = false,

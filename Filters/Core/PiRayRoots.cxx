@@ -606,7 +606,8 @@ constexpr int QuickFactors = 16;
 // f' ∈ q_1 ± Σ_{k>=2} k |q_k| h^(k−1), each widened by the rounding of the shift (the
 // same shift of |c| at |m| bounds every term it sums) and of the sums. Then:
 //   the product's enclosure excludes r (beyond 1e-12 of its size): no root;
-//   Σ f_i' Π_{j≠i} f_j has one sign (intervals; 1e-12 slack): at most one root, which
+//   Σ f_i' Π_{j≠i} f_j has one sign (intervals, by the product rule or else by the
+//   logarithmic derivative, LogDerivativeSign; 1e-12 slack): at most one root, which
 //   exists if F has strictly opposite signs at the ends (each beyond its evaluation's
 //   rounding), and is found by NewtonRoot to the tolerance.
 // Anything else (a possible tangency, two roots, an end within rounding of 0, a value
@@ -665,7 +666,7 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
     double lo, hi, magnitude;
     ProductRule(f, df, factors, prefix, lo, hi, magnitude);
     const double dslack = 1e-12 * magnitude + 1e-290;
-    if (!(lo > dslack || hi < -dslack))
+    if (!(lo > dslack || hi < -dslack) && LogDerivativeSign(f, df, factors, 1e-12) == 0)
     {
       return false; // F may turn: the Bernstein path decides
     }

@@ -31,7 +31,9 @@
  * (the ray caster's octree leaves hand it short depth ranges, most of which need no
  * subdivision): each factor's centred form about the middle (its Taylor shift, widened
  * by the shift's rounding) encloses the factor and its derivative; a product enclosure
- * that misses r means no root, a derivative Σ p_i' Π_{j≠i} p_j of one sign with F of
+ * that misses r means no root, a derivative Σ p_i' Π_{j≠i} p_j of one sign (by the
+ * product rule over the enclosures, or else by the logarithmic derivative Σ p_i'/p_i
+ * where at most one factor may vanish: LogDerivativeSign) with F of
  * strictly opposite signs at the ends (beyond their rounding) means exactly one,
  * solved by the same Newton's method. Everything else goes on to the Bernstein form.
  * Where the caller already knows F to be monotone on the segment
