@@ -628,7 +628,7 @@ int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // PISURF_TIMING=1: the process CPU time of each pass on stderr.
-  PiPassTimer lap("vtkPiRayCaster", PiPassTimer::Cpu);
+  PiPassTimer lap("vtkPiRayCaster");
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
