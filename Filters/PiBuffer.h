@@ -23,13 +23,13 @@ namespace pisurf
 {
 /// Memory for a large array that is written once, from its first byte: from 512 KiB on,
 /// rounded up to a multiple of 2 MiB (the size classes of the reuse below), in the
-/// kernel's ordinary 4 KiB pages. Every first touch of a page is a fault
-/// that the kernel serves by zeroing it.
+/// kernel's ordinary 4 KiB pages. Every first touch of a page is a fault that the kernel
+/// serves by zeroing it.
 ///
 /// These blocks were aligned to 2 MiB and advised to transparent huge pages until
-/// 2026-12-01 (one fault per 2 MiB). On the 2-core virtual machine the benchmarks run on, huge pages then took
-/// longer to fault in than 4 KiB pages: 1 GiB first touched at 0.36–0.92 GB/s against
-/// 1.34–1.58 GB/s. A huge page is carved from a large free block, which there is memory
+/// 2026-12-01 (one fault per 2 MiB). On the 2-core virtual machine the benchmarks run
+/// on, huge pages then took longer to fault in than 4 KiB pages: 1 GiB first touched at
+/// 0.36–0.92 GB/s against 1.34–1.58 GB/s. A huge page is carved from a large free block, which there is memory
 /// the guest has not touched since it booted (the host backs it on that first touch);
 /// 4 KiB pages come back from what was freed recently. First executions, huge pages
 /// against 4 KiB pages: vtkPiSampleFunction on the cup at 256³ 130–295 ms against

@@ -4,10 +4,10 @@
  * @brief PISURF_TIMING=1: the time of each pass of an algorithm on stderr
  *
  * `PiPassTimer lap("vtkPiFlyingEdges");` then `lap("classify");` after each pass prints
- * "vtkPiFlyingEdges classify: 0.0123 s" (wall time, or process CPU time with `Cpu`)
- * when the environment variable PISURF_TIMING is set, and nothing otherwise. Where the
- * system has getrusage, a wall-time lap also gives the CPU time of all threads and the
- * page faults (first touches of fresh memory) of the pass:
+ * "vtkPiFlyingEdges classify: 0.0123 s" (wall time) when the environment variable
+ * PISURF_TIMING is set, and nothing otherwise. Where the system has getrusage, a lap
+ * also gives the CPU time of all threads and the page faults (first touches of fresh
+ * memory) of the pass:
  * "vtkPiFlyingEdges classify: 0.0123 s (CPU 0.0240 s, 1200 page faults)".
  */
 #ifndef PiTiming_h
@@ -15,7 +15,6 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <ctime>
 #include <iostream>
 #if defined(__unix__) || defined(__APPLE__)
 #include <sys/resource.h>
@@ -25,15 +24,8 @@
 class PiPassTimer
 {
 public:
-  enum Clock
-  {
-    Wall,
-    Cpu
-  };
-
-  explicit PiPassTimer(const char* owner, Clock clock = Wall)
+  explicit PiPassTimer(const char* owner)
     : Owner(owner)
-    , Kind(clock)
     , Enabled(std::getenv("PISURF_TIMING") != nullptr)
   {
     this->Reset();
@@ -50,19 +42,15 @@ public:
       return;
     }
     const double now = this->Now();
-    std::cerr << this->Owner << " " << pass << ": " << now - this->Last << " s"
-              << (this->Kind == Cpu ? " CPU" : "");
+    std::cerr << this->Owner << " " << pass << ": " << now - this->Last << " s";
 #ifdef PI_TIMING_RUSAGE
-    if (this->Kind == Wall)
-    {
-      double cpu;
-      long faults;
-      Usage(cpu, faults);
-      std::cerr << " (CPU " << cpu - this->LastCpu << " s, " << faults - this->LastFaults
-                << " page faults)";
-      this->LastCpu = cpu;
-      this->LastFaults = faults;
-    }
+    double cpu;
+    long faults;
+    Usage(cpu, faults);
+    std::cerr << " (CPU " << cpu - this->LastCpu << " s, " << faults - this->LastFaults
+              << " page faults)";
+    this->LastCpu = cpu;
+    this->LastFaults = faults;
 #endif
     std::cerr << "\n";
     this->Last = now;
@@ -73,18 +61,13 @@ public:
   {
     if (this->Enabled)
     {
-      std::cerr << this->Owner << " " << pass << ": " << this->Now() - this->Start << " s"
-                << (this->Kind == Cpu ? " CPU" : "") << "\n";
+      std::cerr << this->Owner << " " << pass << ": " << this->Now() - this->Start << " s\n";
     }
   }
 
 private:
-  double Now() const
+  static double Now()
   {
-    if (this->Kind == Cpu)
-    {
-      return double(std::clock()) / CLOCKS_PER_SEC;
-    }
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
   }
@@ -110,7 +93,6 @@ private:
 #endif
 
   const char* Owner;
-  Clock Kind;
   bool Enabled;
   double Start = 0, Last = 0;
   double LastCpu = 0;

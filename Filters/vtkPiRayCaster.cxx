@@ -627,7 +627,7 @@ void vtkPiRayCaster::ReportReferences(vtkGarbageCollector* collector)
 int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // PISURF_TIMING=1: the process CPU time of each pass on stderr.
+  // PISURF_TIMING=1: the time of each pass on stderr (PiTiming.h).
   PiPassTimer lap("vtkPiRayCaster");
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);

@@ -1547,7 +1547,7 @@ void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t coun
     const LocalAtom& atom = this->Atoms[i];
     const double v0 = p[0] - atom.C[0], v1 = p[1] - atom.C[1], v2 = p[2] - atom.C[2];
     const double d2 = v0 * v0 + v1 * v1 + v2 * v2;
-    within |= d2 < atom.R * atom.R; // OffOuterSide's test
+    within |= d2 < atom.R2; // OffOuterSide's test
     ids[near] = i;
     squares[near] = d2;
     near += d2 < atom.Rho2;
