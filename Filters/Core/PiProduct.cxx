@@ -814,7 +814,8 @@ struct PlainTest
   {
     const double a = std::fabs(f), g0 = std::fabs(g[0]), g1 = std::fabs(g[1]),
                  g2 = std::fabs(g[2]);
-    this->Finite = this->Finite && a > 0.0 && a <= Big && g0 <= Big && g1 <= Big && g2 <= Big;
+    // (& rather than &&: no branch per comparison; the same value.)
+    this->Finite = this->Finite & (a > 0.0) & (a <= Big) & (g0 <= Big) & (g1 <= Big) & (g2 <= Big);
     this->SmallProduct *= std::min(1.0, a);
     this->BigProduct *= std::max(std::max(std::max(1.0, a), std::max(g0, g1)), g2);
   }
@@ -1206,28 +1207,27 @@ bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds
   // T_i = T_{i−1}·(|f_i| + Δ_i) + Δ_i·Π_{j<i}|f_j|. Every term is plain (each partial
   // product of the |f_j| within 2^±250, PlainVertexFactors) unless a Δ is huge: then T
   // is inf and the test below fails.
+  // (The three axes in one pass over the factors: three independent chains, and the
+  // partial products q of the |f_j| shared; the same operations per axis as one axis at
+  // a time.)
   const double h = bounds.Probe;
-  double largest = 0.0, magnitude = 0.0;
-  double product = 1.0;
+  double product = 1.0, q = 1.0;
+  double t[3] = { 0.0, 0.0, 0.0 }, grown[3] = { 1.0, 1.0, 1.0 };
   for (size_t k = 0; k < count; ++k)
   {
+    const double af = std::fabs(f[k]);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double delta = h * std::fabs(g[k][a]) * (1.0 + 1e-12) + slack[3 * k + a];
+      t[a] = t[a] * (af + delta) + delta * q;
+      grown[a] *= af + delta;
+    }
+    q *= af;
     product *= f[k];
   }
   const double absProduct = std::fabs(product);
-  for (int a = 0; a < 3; ++a)
-  {
-    double t = 0.0, q = 1.0, grown = 1.0;
-    for (size_t k = 0; k < count; ++k)
-    {
-      const double af = std::fabs(f[k]);
-      const double delta = h * std::fabs(g[k][a]) * (1.0 + 1e-12) + slack[3 * k + a];
-      t = t * (af + delta) + delta * q;
-      q *= af;
-      grown *= af + delta;
-    }
-    largest = std::max(largest, t);
-    magnitude = std::max(magnitude, grown);
-  }
+  const double largest = std::max({ 0.0, t[0], t[1], t[2] });
+  const double magnitude = std::max({ 0.0, grown[0], grown[1], grown[2] });
   // |F| at a probe, as computed there: at most |F(p)| (with its rounding) + T, plus the
   // rounding of the probe's own product and subtraction; with a relative margin.
   const double r = std::fabs(this->Blending);
