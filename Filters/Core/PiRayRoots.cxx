@@ -528,27 +528,61 @@ inline double HornerWithMagnitude(const double* c, int n, double t, double at, d
 }
 
 // Π p_i(t) − r and its derivative: Horner for each factor and its derivative, then the
-// product rule (Newton's function on a monotone piece).
+// product rule (Newton's function on a monotone piece). Count > 0: every factor has
+// Count coefficients (no dispatch per factor); 0: as `counts` says. The same operations.
+template <int Count>
 inline double ProductMinusWithSlope(const double* coefficients, const int* counts, int factors,
   double r, double t, double& derivative)
 {
   double v = 1.0, dv = 0.0;
-  for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
+  for (int i = 0, offset = 0; i < factors; offset += Count > 0 ? Count : counts[i], ++i)
   {
     const double* c = coefficients + offset;
     double f, df;
-    switch (counts[i])
+    if (Count > 0)
     {
-      // (Literal counts for quadrics and quartics: the loop unrolls once inlined.)
-      case 3: f = EvaluateUnivariateWithDerivative(c, 3, t, df); break;
-      case 5: f = EvaluateUnivariateWithDerivative(c, 5, t, df); break;
-      default: f = EvaluateUnivariateWithDerivative(c, counts[i], t, df); break;
+      f = EvaluateUnivariateWithDerivative(c, Count, t, df);
+    }
+    else
+    {
+      switch (counts[i])
+      {
+        // (Literal counts for quadrics and quartics: the loop unrolls once inlined.)
+        case 3: f = EvaluateUnivariateWithDerivative(c, 3, t, df); break;
+        case 5: f = EvaluateUnivariateWithDerivative(c, 5, t, df); break;
+        default: f = EvaluateUnivariateWithDerivative(c, counts[i], t, df); break;
+      }
     }
     dv = dv * f + v * df;
     v *= f;
   }
   derivative = dv;
   return v - r;
+}
+
+// NewtonRoot (from t, in [a, b], phi(a) = va) on Π p_i − r: products of quadratics only
+// (spheres, ellipsoids, cylinders: the usual Π-surface) without the dispatch per factor.
+inline double ProductNewtonRoot(const double* coefficients, const int* counts, int factors,
+  double r, double a, double b, double va, double width, double t)
+{
+  bool quadratics = true;
+  for (int i = 0; i < factors; ++i)
+  {
+    quadratics = quadratics && counts[i] == 3;
+  }
+  if (quadratics)
+  {
+    return NewtonRoot(
+      [&](double x, double& derivative) {
+        return ProductMinusWithSlope<3>(coefficients, counts, factors, r, x, derivative);
+      },
+      a, b, va, width, t);
+  }
+  return NewtonRoot(
+    [&](double x, double& derivative) {
+      return ProductMinusWithSlope<0>(coefficients, counts, factors, r, x, derivative);
+    },
+    a, b, va, width, t);
 }
 
 // QuickSegment's centred form of one factor (degree D, or d when D < 0) about m: its
@@ -704,10 +738,8 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
   {
     return true; // monotone without a change of sign: no root
   }
-  auto phid = [&](double t, double& derivative) {
-    return ProductMinusWithSlope(coefficients, counts, factors, r, t, derivative);
-  };
-  cluster.Add(NewtonRoot(phid, t0, t1, va, options.Tolerance, t0 + (t1 - t0) * va / (va - vb)),
+  cluster.Add(ProductNewtonRoot(coefficients, counts, factors, r, t0, t1, va, options.Tolerance,
+                t0 + (t1 - t0) * va / (va - vb)),
     false, va, vb);
   found = true;
   return true;
@@ -919,9 +951,6 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     return false;
   }
   const double* scaled = w.Scaled.data();
-  auto phid = [&](double t, double& derivative) {
-    return ProductMinusWithSlope(scaled, counts, factors, rs, t, derivative);
-  };
   stack.clear();
   stack.push_back({ t0, t1, 0, 0 });
   while (!stack.empty())
@@ -946,14 +975,18 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     const double va = f[0], vb = f[degree];
     const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
     // Descartes: every coefficient clearly signed and one sign variation.
-    int variations = 0;
-    bool clear = true;
-    for (int k = 0; k < n && clear; ++k)
+    // (Counted over all coefficients without early exits, which the compiler turns
+    // into vector compares: the variations matter only where all are clear.)
+    int unclear = 0, variations = 0;
+    for (int k = 0; k < n; ++k)
     {
-      clear = std::fabs(f[k]) > slack;
-      variations += k > 0 && ((f[k] < 0) != (f[k - 1] < 0));
+      unclear += !(std::fabs(f[k]) > slack);
     }
-    bool single = clear && variations == 1;
+    for (int k = 1; k < n; ++k)
+    {
+      variations += (f[k] < 0) != (f[k - 1] < 0);
+    }
+    bool single = unclear == 0 && variations == 1;
     bool monotone = single;
     if (!single)
     {
@@ -983,9 +1016,9 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
             break;
           }
         }
-        cluster.Add(
-          NewtonRoot(phid, p.A, p.B, va, options.Tolerance, p.A + start * (p.B - p.A)), false,
-          va, vb);
+        cluster.Add(ProductNewtonRoot(scaled, counts, factors, rs, p.A, p.B, va,
+                      options.Tolerance, p.A + start * (p.B - p.A)),
+          false, va, vb);
       }
       else if (va == 0.0 || vb == 0.0)
       {
