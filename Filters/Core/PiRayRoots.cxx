@@ -752,12 +752,13 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
 // FastRayRoots's step for one factor (degree D, or `degree` when D < 0): its weighted
 // Bernstein coefficients on [t0, t1] scaled by 2^-e (e added to `exponent`; the factor's
 // coefficients scaled alike into `scaled`), convolved with the product so far (degree
-// `current`) into next, and its absolute values likewise. False where the factor is 0
-// or leaves the exponent range (the caller gives up the fast path).
+// `current`) into next; `bound` multiplied by the largest |b_k| of the scaled factor (in
+// [1/2, 1)). False where the factor is 0 or leaves the exponent range (the caller gives
+// up the fast path).
 template <int D>
 inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
-  const FastWorkspace& w, const double* product, const double* absProduct, int current,
-  double* next, double* absNext, double* scaled, long& exponent)
+  const FastWorkspace& w, const double* product, int current, double* next, double* scaled,
+  long& exponent, double& bound)
 {
   const int d = D >= 0 ? D : degree, count = d + 1;
   double bern[MaxDegree + 1], q[MaxDegree + 1];
@@ -795,6 +796,7 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   }
   exponent += e;
   const double scale = pisurf::Ldexp(1.0, -e); // exact: multiplying by it only rescales
+  bound *= m * scale;
   for (int k = 0; k < count; ++k)
   {
     bern[k] *= scale;
@@ -812,19 +814,17 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   constexpr bool padded = D >= 0;
   for (int k = 0; k <= current + d; ++k)
   {
-    double sum = 0.0, absolute = 0.0;
+    double sum = 0.0;
     const int last = padded ? 0 : std::max(0, k - current);
     for (int b = padded ? d : std::min(d, k); b >= last; --b)
     {
       sum += product[k - b] * bern[b];
-      absolute += absProduct[k - b] * std::fabs(bern[b]);
     }
     next[k] = sum;
-    absNext[k] = absolute;
   }
   for (int k = current + d + 1; k <= current + d + FastPad; ++k)
   {
-    next[k] = absNext[k] = 0.0; // (the padding after the new product)
+    next[k] = 0.0; // (the padding after the new product)
   }
   return true;
 }
@@ -856,12 +856,11 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   // (with FastPad zeros before the first coefficient and after the last, as
   // BernsteinFactor's unrolled degrees read them)
   double buffers[2][FastDegree + 1 + 2 * FastPad];
-  double absBuffers[2][FastDegree + 1 + 2 * FastPad];
   for (int b = 0; b < 2; ++b)
   {
     for (int k = 0; k < 2 * FastPad + 1; ++k)
     {
-      buffers[b][k] = absBuffers[b][k] = 0.0;
+      buffers[b][k] = 0.0;
     }
   }
   double* product = buffers[0] + FastPad;
@@ -869,11 +868,9 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   product[0] = 1.0;
   int current = 0; // degree of the product so far
   long exponent = 0;
-  // The same convolution of the coefficients' absolute values: the size of the terms
-  // each product coefficient sums, which bounds its rounding (see below).
-  double* absProduct = absBuffers[0] + FastPad;
-  double* absNext = absBuffers[1] + FastPad;
-  absProduct[0] = 1.0;
+  // The product of the scaled factors' largest |b_k|: it bounds the terms each product
+  // coefficient sums, hence its rounding (see below).
+  double bound = 1.0;
   w.Scaled.resize(total);
   for (int i = 0, offset = 0; i < factors; offset += counts[i], ++i)
   {
@@ -885,16 +882,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     switch (d)
     {
       case 2:
-        ok = BernsteinFactor<2>(
-          c, 2, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        ok = BernsteinFactor<2>(c, 2, t0, t1, w, product, current, next, scaled, exponent, bound);
         break;
       case 4:
-        ok = BernsteinFactor<4>(
-          c, 4, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        ok = BernsteinFactor<4>(c, 4, t0, t1, w, product, current, next, scaled, exponent, bound);
         break;
       default:
-        ok = BernsteinFactor<-1>(
-          c, d, t0, t1, w, product, absProduct, current, next, absNext, scaled, exponent);
+        ok = BernsteinFactor<-1>(c, d, t0, t1, w, product, current, next, scaled, exponent, bound);
         break;
     }
     if (!ok)
@@ -903,7 +897,6 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     }
     current += d;
     std::swap(product, next);
-    std::swap(absProduct, absNext);
   }
   double rs = 0.0;
   if (r != 0.0)
@@ -929,9 +922,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   const double rslack = 1e-9 * std::fabs(rs);
   const double fslack = 1e-12 * (factors + 1);
   // Rounding: every coefficient of the product carries the error of its convolution, at
-  // most 2·(degree + factors)·u (u = 2^-52) times the sum of its terms' absolute values
-  // (`rounding`, the largest over the coefficients; the de Casteljau splits then only
-  // average, adding rounding relative to what they average). Every piece inherits it,
+  // most 2·(degree + factors)·u (u = 2^-52) times the sum of its terms' absolute values.
+  // With B_i the largest |b_k| of scaled factor i (|C(d_i, k)·b_k| <= C(d_i, k)·B_i),
+  // that sum for the weighted coefficient k of the product is at most C(n, k)·Π B_i
+  // (Vandermonde: the C(d_i, k_i) over k_1 + ... = k sum to C(n, k)), so every plain
+  // coefficient's error is at most `rounding` = 2·(degree + factors)·u·Π B_i (the
+  // de Casteljau splits then only average, adding rounding relative to what they
+  // average). Every piece inherits it,
   // however small its own values: it enters each piece's slack as an absolute floor.
   // Where it exceeds even the top level's relative slack (the terms cancel by 1e30, as
   // with 20 atom spheres across 13 Å), the general path decides the whole segment, factor
@@ -939,13 +936,13 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   // undecided, its values within 1e3 times it, is expanded afresh (below). Where the
   // relative slack dominates (the chains of tiny pieces at a double root) nothing
   // changes, so such a chain stays one root whatever the segment.
-  double largest = 0.0, rounding = 0.0;
+  double largest = 0.0;
   for (int k = 0; k < n; ++k)
   {
     largest = std::max(largest, std::fabs(pool[k] + rs));
-    rounding = std::max(rounding, absProduct[k] / w.Binomial[degree][k]);
   }
-  rounding *= 2.0 * (degree + factors) * 0x1p-52;
+  // (with a margin for the rounding of the bound's own product)
+  const double rounding = bound * (2.0 * (degree + factors) * 0x1p-52) * (1.0 + 1e-10);
   if (!(rounding <= fslack * largest))
   {
     return false;
