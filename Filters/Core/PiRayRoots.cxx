@@ -928,8 +928,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
   // (Vandermonde: the C(d_i, k_i) over k_1 + ... = k sum to C(n, k)), so every plain
   // coefficient's error is at most `rounding` = 2·(degree + factors)·u·Π B_i (the
   // de Casteljau splits then only average, adding rounding relative to what they
-  // average). Every piece inherits it,
-  // however small its own values: it enters each piece's slack as an absolute floor.
+  // average). Every piece inherits it, however small its own values: it enters each
+  // piece's slack as an absolute floor.
   // Where it exceeds even the top level's relative slack (the terms cancel by 1e30, as
   // with 20 atom spheres across 13 Å), the general path decides the whole segment, factor
   // by factor, each accurate to its own size; a piece that only this floor leaves
