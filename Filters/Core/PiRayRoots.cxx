@@ -1087,13 +1087,22 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     total += counts[i];
   }
   // Every coefficient finite: c·0 is 0 for a finite c and NaN for ±inf or NaN, so the
-  // sum is NaN exactly when one is not (no branch per coefficient).
-  double poison = 0.0;
-  for (size_t k = 0; k < total; ++k)
+  // sum is NaN exactly when one is not (no branch per coefficient; four partial sums, so
+  // that the additions do not wait for each other: this runs for every depth range).
+  double poison[4] = { 0.0, 0.0, 0.0, 0.0 };
+  size_t k = 0;
+  for (; k + 4 <= total; k += 4)
   {
-    poison += coefficients[k] * 0.0;
+    for (int l = 0; l < 4; ++l)
+    {
+      poison[l] += coefficients[k + l] * 0.0;
+    }
   }
-  if (poison != 0.0)
+  for (; k < total; ++k)
+  {
+    poison[0] += coefficients[k] * 0.0;
+  }
+  if ((poison[0] + poison[1]) + (poison[2] + poison[3]) != 0.0)
   {
     return false;
   }
