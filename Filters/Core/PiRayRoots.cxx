@@ -122,10 +122,13 @@ void SplitFixed(const double* b, double* left, double* right)
   {
     w[k] = b[k];
   }
+  // (fully unrolled: no loop branches at all)
+#pragma GCC unroll 32
   for (int r = 0; r < N; ++r)
   {
     left[r] = w[0];
     right[N - 1 - r] = w[N - 1 - r];
+#pragma GCC unroll 32
     for (int k = 0; k < N - 1 - r; ++k)
     {
       w[k] = 0.5 * (w[k] + w[k + 1]);
@@ -138,13 +141,19 @@ void Split(const double* b, int count, double* left, double* right)
 {
   switch (count)
   {
-    // (the degrees of common products: quadrics and quartics, a few of them)
+    // (the degrees of common products: quadrics and quartics, up to ten quadrics; the
+    // unrolled loops also spare the branch predictor the general loop's varying trip
+    // counts)
     case 3: return SplitFixed<3>(b, left, right);
     case 5: return SplitFixed<5>(b, left, right);
     case 7: return SplitFixed<7>(b, left, right);
     case 9: return SplitFixed<9>(b, left, right);
     case 11: return SplitFixed<11>(b, left, right);
     case 13: return SplitFixed<13>(b, left, right);
+    case 15: return SplitFixed<15>(b, left, right);
+    case 17: return SplitFixed<17>(b, left, right);
+    case 19: return SplitFixed<19>(b, left, right);
+    case 21: return SplitFixed<21>(b, left, right);
     default: break;
   }
   double w[MaxDegree + 1];
