@@ -776,11 +776,11 @@ static void KeepNearest(double f, const double g[3], int k, int& nearest, double
 {
   const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
   const double d = g2 > 0 ? f * f / g2 : (f == 0 ? 0.0 : std::numeric_limits<double>::infinity());
-  if (nearest < 0 || d < best)
-  {
-    nearest = k;
-    best = d;
-  }
+  // (Selected without a branch: which factor is nearest changes from point to point
+  // unpredictably.)
+  const bool take = (nearest < 0) | (d < best);
+  nearest = take ? k : nearest;
+  best = take ? d : best;
 }
 
 // The end of EvaluateVertex(Star): unit normal, |∇F| and, if asked, ln|∇F| (−inf where
