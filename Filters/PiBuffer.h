@@ -29,9 +29,9 @@ namespace pisurf
 /// These blocks were aligned to 2 MiB and advised to transparent huge pages until
 /// 2026-12-01 (one fault per 2 MiB). On the 2-core virtual machine the benchmarks run
 /// on, huge pages then took longer to fault in than 4 KiB pages: 1 GiB first touched at
-/// 0.36–0.92 GB/s against 1.34–1.58 GB/s. A huge page is carved from a large free block, which there is memory
-/// the guest has not touched since it booted (the host backs it on that first touch);
-/// 4 KiB pages come back from what was freed recently. First executions, huge pages
+/// 0.36–0.92 GB/s against 1.34–1.58 GB/s. A huge page is carved from a large free
+/// block, which there is memory the guest has not touched since it booted (the host
+/// backs it on that first touch); 4 KiB pages come back from what was freed recently. First executions, huge pages
 /// against 4 KiB pages: vtkPiSampleFunction on the cup at 256³ 130–295 ms against
 /// 73–84 ms, vtkPiFlyingEdges 275–298 ms against 131–161 ms, the first all-hits cast of
 /// 10 spheres at 1024² 1.58–2.0 s against 1.35–1.52 s, Molecular Pi Surface (Local,

@@ -981,8 +981,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
     const double va = f[0], vb = f[degree];
     const bool change = (va < 0 && vb > 0) || (va > 0 && vb < 0);
     // Descartes: every coefficient clearly signed and one sign variation.
-    // (Counted over all coefficients without early exits, which the compiler turns
-    // into vector compares: the variations matter only where all are clear.)
+    // (Counted over all coefficients without early exits or a branch per coefficient:
+    // the variations matter only where all are clear.)
     int unclear = 0, variations = 0;
     for (int k = 0; k < n; ++k)
     {
