@@ -116,10 +116,19 @@ bool Clip(const double o[3], const double d[3], const double b[6], double& t0, d
 // once from one Taylor expansion per factor (ClassifyBoxAndOctants), and a leaf is an
 // undecided octant, not classified again; a camera's children are classified one by
 // one (the octants of an oblique box are not their boxes). Each leaf column keeps the
-// depth ranges of its undecided leaves, merged where they touch, in increasing depth:
-// its rays search only there (the first hit stops at the first range holding a root),
-// and a column with none casts nothing. The boxes hold the rays' pixel centres (an
-// octant's inner faces lie half a pixel beyond its rays), so no root is skipped.
+// depth ranges of its undecided leaves, merged where they touch and F's monotony along
+// the rays is the same (DepthRange::Monotone), in increasing depth: its rays search only
+// there (the first hit stops at the first range holding a root), and a column with none
+// casts nothing. Touching ranges of different monotony stay apart but joined
+// (DepthRange::Joined): a ray searches such a run as one segment cut between them, each
+// piece with its own monotony (FindRayRoots with cuts), so a monotone piece is decided
+// by its ends where the merged range would have needed the product's Bernstein form
+// (a ray through a thin part: rising into it, falling out), and a root on a cut is
+// reported once. (Caster instructions at 512², against merging every touching range:
+// 10 spheres' first hits −9.9 %, all hits −2.4 %; the cup −8.0 % and −2.7 %; the table
+// −7.7 % and −4.9 %. Keeping the leaves of unproven monotony apart too cost 17 % more
+// on the 10 spheres' all hits.) The boxes hold the rays' pixel centres (an octant's
+// inner faces lie half a pixel beyond its rays), so no root is skipped.
 // 8-pixel leaves and boxes as deep as wide measured best on the cup, the table and ten
 // spheres at 1024² (4-pixel leaves, or classifying an axis view's leaves themselves,
 // cost more in enclosures than they save in root finding). 128-pixel tiles: the empty
@@ -138,6 +147,10 @@ struct DepthRange
   // exactly where F changes sign between the range's ends; 0 where it may turn (and for
   // cameras).
   int Monotone;
+  // Touches the column's range before it (its Start is that range's End): the two were
+  // left apart only because F is monotone on them differently (see the merge in
+  // RequestData), and a ray searches them as one segment cut in two.
+  bool Joined;
 };
 
 // Per view: the leaf columns' depth ranges (CSR by column, row-major over columns).
@@ -374,7 +387,7 @@ struct TileOctree
     {
       return;
     }
-    this->Leaves.push_back({ column, { ta, tb, monotone } });
+    this->Leaves.push_back({ column, { ta, tb, monotone, false } });
   }
 };
 
@@ -401,6 +414,8 @@ struct CastRows
   {
     std::vector<pisurf::RayRoot> Roots;
     std::vector<double> Coefficients, Row;
+    std::vector<double> Cuts;  // a run of joined ranges: its cuts (in s) and
+    std::vector<int> Monotony; // each piece's monotony (see Cast)
   };
 
   void Cast(const View& v, int viewIndex, int i, int j, std::vector<Hit>& out,
@@ -458,10 +473,22 @@ struct CastRows
     // The roots on the segment [a, b] of the ray, as hits: from the grid's restriction,
     // or from the factors restricted about the segment's start (t' = t − a).
     int index = 0;
-    auto search = [&](double a, double b) {
+    // (pieces > 1: the grid's segment [cuts[0], cuts[pieces]] searched piece by piece,
+    // each with its own monotony; the cuts in the grid's parameter s)
+    std::vector<double>& cuts = buffers.Cuts;
+    std::vector<int>& monotony = buffers.Monotony;
+    auto search = [&](double a, double b, int pieces = 1) {
       if (grid)
       {
-        this->Caster->CastRestricted(coefficients.data(), a - h, b - h, options, roots);
+        if (pieces > 1)
+        {
+          this->Caster->CastRestricted(
+            coefficients.data(), cuts.data(), monotony.data(), pieces, options, roots);
+        }
+        else
+        {
+          this->Caster->CastRestricted(coefficients.data(), a - h, b - h, options, roots);
+        }
         for (const pisurf::RayRoot& r : roots)
         {
           const double t = r.T + h;
@@ -491,17 +518,47 @@ struct CastRows
       search(t0, t1);
       return;
     }
-    // The column's ranges in increasing depth (no root lies between them).
-    for (; range != rangeEnd; ++range)
+    // The column's ranges in increasing depth (no root lies between them). A run of
+    // joined ranges is one segment, cut where the monotony changes: on the grid's rays
+    // its pieces are searched with their own monotony in one cluster (a root on a cut
+    // once); elsewhere (cameras, whose ranges are never joined) as one segment.
+    while (range != rangeEnd)
     {
+      const DepthRange* last = range + 1;
+      while (last != rangeEnd && last->Joined)
+      {
+        ++last;
+      }
       const double a = std::max(t0, range->Start * depthToT);
-      const double b = std::min(t1, range->End * depthToT);
+      const double b = std::min(t1, (last - 1)->End * depthToT);
+      int pieces = 0;
+      bool monotone = true;
+      if (a < b && grid && last - range > 1)
+      {
+        cuts.assign(1, a - h);
+        monotony.clear();
+        for (const DepthRange* p = range; p != last; ++p)
+        {
+          const double end = p + 1 == last ? b : std::min(b, p->End * depthToT);
+          if (end - h > cuts.back())
+          {
+            monotony.push_back(p->Monotone != 0);
+            cuts.push_back(end - h);
+            ++pieces;
+          }
+        }
+      }
+      for (const DepthRange* p = range; p != last; ++p)
+      {
+        monotone = monotone && p->Monotone != 0 && p->Monotone == range->Monotone;
+      }
+      range = last;
       if (!(a < b))
       {
         continue;
       }
-      options.Monotone = range->Monotone != 0;
-      search(a, b);
+      options.Monotone = monotone;
+      search(a, b, std::max(pieces, 1));
       if (!this->AllHits && !roots.empty())
       {
         return;
@@ -1001,7 +1058,10 @@ int vtkPiRayCaster::RequestData(
             const int first = kept;
             for (int m = offsets[c]; m < offsets[c + 1]; ++m)
             {
-              if (kept > first && ranges.back().End >= sorted[m].Start)
+              const bool touches = kept > first && ranges.back().End >= sorted[m].Start;
+              if (touches &&
+                (ranges.back().Monotone == sorted[m].Monotone ||
+                  ranges.back().End > sorted[m].Start))
               {
                 ranges.back().End = std::max(ranges.back().End, sorted[m].End);
                 // (F monotone the same way on both parts is so on their union)
@@ -1013,6 +1073,7 @@ int vtkPiRayCaster::RequestData(
               else
               {
                 ranges.push_back(sorted[m]);
+                ranges.back().Joined = touches;
                 ++kept;
               }
             }

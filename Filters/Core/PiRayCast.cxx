@@ -76,6 +76,15 @@ void RayCaster::CastRestricted(const double* coefficients, double t0, double t1,
     this->Kernel->GetBlending(), t0, t1, options, roots);
 }
 
+void RayCaster::CastRestricted(const double* coefficients, const double* cuts,
+  const int* monotone, int pieces, const RayRootOptions& options,
+  std::vector<RayRoot>& roots) const
+{
+  roots.clear();
+  FindRayRoots(coefficients, this->Counts.data(), static_cast<int>(this->Counts.size()),
+    this->Kernel->GetBlending(), cuts, monotone, pieces, options, roots);
+}
+
 RayGrid::RayGrid(const ProductKernel& kernel, const double O[3], const double U[3],
   const double V[3], const double D[3], int w, int h, double length)
   : CentreI(0.5 * (w - 1))

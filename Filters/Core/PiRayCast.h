@@ -53,6 +53,10 @@ public:
   /// or RayGrid::Restrict write them). Only for polynomial kernels.
   void CastRestricted(const double* coefficients, double t0, double t1,
     const RayRootOptions& options, std::vector<RayRoot>& roots) const;
+  /// The same on [cuts[0], cuts[pieces]] cut into pieces, each monotone or not (see
+  /// FindRayRoots).
+  void CastRestricted(const double* coefficients, const double* cuts, const int* monotone,
+    int pieces, const RayRootOptions& options, std::vector<RayRoot>& roots) const;
   size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
 
 private:

@@ -1081,10 +1081,25 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
 bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
   double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
 {
-  if (!std::isfinite(r) || !std::isfinite(t0) || !std::isfinite(t1) || !(t0 <= t1) ||
-    !(options.Tolerance > 0) || factors < 0)
+  const double cuts[2] = { t0, t1 };
+  const int monotone = options.Monotone ? 1 : 0;
+  return FindRayRoots(coefficients, counts, factors, r, cuts, &monotone, 1, options, roots);
+}
+
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
+  const double* cuts, const int* monotone, int pieces, const RayRootOptions& options,
+  std::vector<RayRoot>& roots)
+{
+  if (!std::isfinite(r) || pieces < 1 || !(options.Tolerance > 0) || factors < 0)
   {
     return false;
+  }
+  for (int k = 0; k <= pieces; ++k)
+  {
+    if (!std::isfinite(cuts[k]) || (k > 0 && !(cuts[k - 1] <= cuts[k])))
+    {
+      return false;
+    }
   }
   size_t total = 0;
   for (int i = 0; i < factors; ++i)
@@ -1116,15 +1131,25 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
     return false;
   }
   roots.clear();
+  // One cluster over all pieces: a root on a cut, found by the pieces on both sides,
+  // is reported once (as a root inside one piece is).
+  RootCluster cluster(roots, options.Tolerance);
+  RayRootOptions piece = options;
+  for (int k = 0; k < pieces; ++k)
   {
-    RootCluster cluster(roots, options.Tolerance);
-    if (FastRayRoots(coefficients, counts, factors, r, t0, t1, options, roots, cluster, 0))
+    piece.Monotone = monotone[k] != 0;
+    if (!FastRayRoots(
+          coefficients, counts, factors, r, cuts[k], cuts[k + 1], piece, roots, cluster, 0))
     {
-      return true;
+      // (the fast path added nothing for this piece)
+      Solver(coefficients, counts, factors, r, piece, GeneralWorkspace())
+        .Run(cuts[k], cuts[k + 1], cluster, roots);
+    }
+    if (!options.AllRoots && !roots.empty())
+    {
+      break;
     }
   }
-  roots.clear();
-  Solver(coefficients, counts, factors, r, options, GeneralWorkspace()).Run(t0, t1, roots);
   return true;
 }
 

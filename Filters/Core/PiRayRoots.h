@@ -171,6 +171,13 @@ bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, dou
 /// work buffers), for casting millions of rays.
 bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
   double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
+/// The same on the segment [cuts[0], cuts[pieces]] cut into `pieces` pieces
+/// [cuts[k], cuts[k + 1]] (increasing), each with its own RayRootOptions::Monotone
+/// (monotone[k]; options.Monotone is ignored). The roots of all pieces, in increasing t,
+/// in one cluster: a root on a cut is reported once.
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
+  const double* cuts, const int* monotone, int pieces, const RayRootOptions& options,
+  std::vector<RayRoot>& roots);
 }
 
 #endif

@@ -347,3 +347,131 @@ TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
   EXPECT_GT(compared, 100);
   EXPECT_GT(changes, 100);
 }
+
+TEST(RayRoots, CutSegmentReportsEachRootOnce)
+{
+  // The ray caster hands a run of touching octree leaves over as one segment cut where
+  // F's proven monotony changes, each piece with its own Monotone flag, the roots of all
+  // pieces in one cluster. Products of spheres and tori: cut into 23 pieces (in every
+  // other trial also exactly at the whole ray's roots), each piece flagged monotone
+  // where 4000 long-double samples of F' over it keep one sign with a margin of one
+  // sample beyond each end (the flag must be true: the pieces then skip the
+  // enclosures), the roots must be the whole ray's: none lost, none reported twice on a
+  // cut, the same tangency; with AllRoots off, the whole ray's first root alone.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
+  const double tolerance = RayRootOptions().Tolerance;
+  int compared = 0, flagged = 0, onCuts = 0;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    std::vector<std::vector<double>> factors;
+    const double o[3] = { -4.0, 0.5 * c(rng), 0.5 * c(rng) }, d[3] = { 1, 0, 0 };
+    const int count = 2 + trial % 4;
+    for (int i = 0; i < count; ++i)
+    {
+      if (i == 0 && trial % 3 == 0)
+      {
+        PrimitiveSpec torus;
+        torus.Type = PrimitiveType::Torus;
+        torus.Center[0] = 0.5 * c(rng);
+        torus.Center[1] = 0.2 * c(rng);
+        torus.MajorRadius = 1.0;
+        torus.MinorRadius = 0.05 + 0.2 * unit(rng);
+        factors.push_back(Along(torus, o, d));
+      }
+      else
+      {
+        factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
+      }
+    }
+    const double r = trial % 5 == 4 ? 0.0 : (trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0));
+    const double length = 8.0;
+    const auto whole = Roots(factors, r, 0.0, length);
+    std::vector<double> cuts{ 0.0, length };
+    for (int s = 0; s < 22; ++s)
+    {
+      cuts.push_back(length * (s + 0.61) / 23);
+    }
+    if (trial % 2 == 1)
+    {
+      for (const RayRoot& x : whole)
+      {
+        cuts.push_back(x.T);
+        ++onCuts;
+      }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    // F' in long double by the product rule.
+    auto slope = [&](double t) {
+      long double p = 1.0L, dp = 0.0L;
+      for (const auto& f : factors)
+      {
+        long double v = 0.0L, dv = 0.0L;
+        for (size_t k = f.size(); k-- > 0;)
+        {
+          dv = dv * t + v;
+          v = v * t + f[k];
+        }
+        dp = dp * v + p * dv;
+        p *= v;
+      }
+      return dp;
+    };
+    const int pieces = static_cast<int>(cuts.size()) - 1;
+    std::vector<int> monotone(pieces, 0);
+    const int samples = 4000;
+    for (int k = 0; k < pieces; ++k)
+    {
+      const double step = length / samples, a = cuts[k] - step, b = cuts[k + 1] + step;
+      int positive = 0, negative = 0;
+      for (double t = a; t <= b; t += 0.25 * step)
+      {
+        const long double s = slope(t);
+        positive += s > 0;
+        negative += !(s > 0);
+      }
+      monotone[k] = positive == 0 || negative == 0;
+      flagged += monotone[k];
+    }
+    std::vector<double> flat;
+    std::vector<int> counts;
+    for (const auto& f : factors)
+    {
+      flat.insert(flat.end(), f.begin(), f.end());
+      counts.push_back(static_cast<int>(f.size()));
+    }
+    RayRootOptions options;
+    std::vector<RayRoot> cut;
+    ASSERT_TRUE(FindRayRoots(
+      flat.data(), counts.data(), count, r, cuts.data(), monotone.data(), pieces, options, cut));
+    ASSERT_EQ(cut.size(), whole.size()) << "trial " << trial;
+    for (size_t k = 0; k < whole.size(); ++k)
+    {
+      EXPECT_NEAR(cut[k].T, whole[k].T, 2.0 * tolerance) << "trial " << trial << " root " << k;
+      EXPECT_EQ(cut[k].Tangent, whole[k].Tangent) << "trial " << trial << " root " << k;
+      ++compared;
+    }
+    options.AllRoots = false;
+    std::vector<RayRoot> first;
+    ASSERT_TRUE(FindRayRoots(
+      flat.data(), counts.data(), count, r, cuts.data(), monotone.data(), pieces, options, first));
+    ASSERT_EQ(first.size(), whole.empty() ? 0u : 1u) << "trial " << trial;
+    if (!whole.empty())
+    {
+      EXPECT_NEAR(first[0].T, whole[0].T, 2.0 * tolerance) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(compared, 60);
+  EXPECT_GT(flagged, 200);
+  EXPECT_GT(onCuts, 20);
+  // Cuts that are not increasing or not finite are refused.
+  const double coefficients[2] = { -1.0, 2.0 };
+  const int counts[1] = { 2 }, flags[2] = { 0, 0 };
+  const double backwards[3] = { 0.0, 0.7, 0.6 }, nan[3] = { 0.0, NAN, 1.0 };
+  std::vector<RayRoot> roots;
+  RayRootOptions options;
+  EXPECT_FALSE(FindRayRoots(coefficients, counts, 1, 0.0, backwards, flags, 2, options, roots));
+  EXPECT_FALSE(FindRayRoots(coefficients, counts, 1, 0.0, nan, flags, 2, options, roots));
+  EXPECT_FALSE(FindRayRoots(coefficients, counts, 1, 0.0, nan, flags, 0, options, roots));
+}
