@@ -33,6 +33,36 @@ PrimitiveSpec Sphere(double x, double y, double z, double radius)
   return s;
 }
 
+// 2 to 5 factors (2 + trial % 4; in every third trial the first a torus of minor radius
+// 0.05 to 0.25, else spheres of radius 0.4 to 1) restricted to the ray from
+// (−4, y, z) along x, and r: 0 in every fifth trial, else 0.01, 1 or 10 by trial % 3.
+std::vector<std::vector<double>> SpheresAndTorus(std::mt19937& rng, int trial, double& r)
+{
+  std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
+  std::vector<std::vector<double>> factors;
+  const double o[3] = { -4.0, 0.5 * c(rng), 0.5 * c(rng) }, d[3] = { 1, 0, 0 };
+  const int count = 2 + trial % 4;
+  for (int i = 0; i < count; ++i)
+  {
+    if (i == 0 && trial % 3 == 0)
+    {
+      PrimitiveSpec torus;
+      torus.Type = PrimitiveType::Torus;
+      torus.Center[0] = 0.5 * c(rng);
+      torus.Center[1] = 0.2 * c(rng);
+      torus.MajorRadius = 1.0;
+      torus.MinorRadius = 0.05 + 0.2 * unit(rng);
+      factors.push_back(Along(torus, o, d));
+    }
+    else
+    {
+      factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
+    }
+  }
+  r = trial % 5 == 4 ? 0.0 : (trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0));
+  return factors;
+}
+
 std::vector<RayRoot> Roots(const std::vector<std::vector<double>>& factors, double r, double t0,
   double t1, bool all = true)
 {
@@ -280,32 +310,12 @@ TEST(RayRoots, ShortSegmentsFindWhatTheWholeRayFinds)
   // counted once), every sign change among 20000 long-double samples must hold one, and
   // every crossing root must have opposite signs a tolerance either side.
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
   const double tolerance = RayRootOptions().Tolerance;
   int compared = 0, changes = 0;
   for (int trial = 0; trial < 60; ++trial)
   {
-    std::vector<std::vector<double>> factors;
-    const double o[3] = { -4.0, 0.5 * c(rng), 0.5 * c(rng) }, d[3] = { 1, 0, 0 };
-    const int count = 2 + trial % 4;
-    for (int i = 0; i < count; ++i)
-    {
-      if (i == 0 && trial % 3 == 0)
-      {
-        PrimitiveSpec torus;
-        torus.Type = PrimitiveType::Torus;
-        torus.Center[0] = 0.5 * c(rng);
-        torus.Center[1] = 0.2 * c(rng);
-        torus.MajorRadius = 1.0;
-        torus.MinorRadius = 0.05 + 0.2 * unit(rng);
-        factors.push_back(Along(torus, o, d));
-      }
-      else
-      {
-        factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
-      }
-    }
-    const double r = trial % 5 == 4 ? 0.0 : (trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0));
+    double r;
+    const auto factors = SpheresAndTorus(rng, trial, r);
     const double length = 8.0;
     const auto whole = Roots(factors, r, 0.0, length);
     // Uneven cuts: the ends fall anywhere relative to the roots (or on them).
@@ -359,32 +369,13 @@ TEST(RayRoots, CutSegmentReportsEachRootOnce)
   // enclosures), the roots must be the whole ray's: none lost, none reported twice on a
   // cut, the same tangency; with AllRoots off, the whole ray's first root alone.
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> c(-1.5, 1.5), radius(0.4, 1.0), unit(0.0, 1.0);
   const double tolerance = RayRootOptions().Tolerance;
   int compared = 0, flagged = 0, onCuts = 0;
   for (int trial = 0; trial < 40; ++trial)
   {
-    std::vector<std::vector<double>> factors;
-    const double o[3] = { -4.0, 0.5 * c(rng), 0.5 * c(rng) }, d[3] = { 1, 0, 0 };
-    const int count = 2 + trial % 4;
-    for (int i = 0; i < count; ++i)
-    {
-      if (i == 0 && trial % 3 == 0)
-      {
-        PrimitiveSpec torus;
-        torus.Type = PrimitiveType::Torus;
-        torus.Center[0] = 0.5 * c(rng);
-        torus.Center[1] = 0.2 * c(rng);
-        torus.MajorRadius = 1.0;
-        torus.MinorRadius = 0.05 + 0.2 * unit(rng);
-        factors.push_back(Along(torus, o, d));
-      }
-      else
-      {
-        factors.push_back(Along(Sphere(c(rng), 0.3 * c(rng), 0.3 * c(rng), radius(rng)), o, d));
-      }
-    }
-    const double r = trial % 5 == 4 ? 0.0 : (trial % 3 == 0 ? 0.01 : (trial % 3 == 1 ? 1.0 : 10.0));
+    double r;
+    const auto factors = SpheresAndTorus(rng, trial, r);
+    const int count = static_cast<int>(factors.size());
     const double length = 8.0;
     const auto whole = Roots(factors, r, 0.0, length);
     std::vector<double> cuts{ 0.0, length };
