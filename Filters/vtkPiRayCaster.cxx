@@ -532,7 +532,6 @@ struct CastRows
       const double a = std::max(t0, range->Start * depthToT);
       const double b = std::min(t1, (last - 1)->End * depthToT);
       int pieces = 0;
-      bool monotone = true;
       if (a < b && grid && last - range > 1)
       {
         cuts.assign(1, a - h);
@@ -548,16 +547,14 @@ struct CastRows
           }
         }
       }
-      for (const DepthRange* p = range; p != last; ++p)
-      {
-        monotone = monotone && p->Monotone != 0 && p->Monotone == range->Monotone;
-      }
+      // (A joined run as one segment, where its pieces are not searched apart, is not
+      // proven monotone: its ranges' monotony differs from one to the next.)
+      options.Monotone = last - range == 1 && range->Monotone != 0;
       range = last;
       if (!(a < b))
       {
         continue;
       }
-      options.Monotone = monotone;
       search(a, b, std::max(pieces, 1));
       if (!this->AllHits && !roots.empty())
       {
@@ -1058,6 +1055,7 @@ int vtkPiRayCaster::RequestData(
             const int first = kept;
             for (int m = offsets[c]; m < offsets[c + 1]; ++m)
             {
+              // (Overlapping ranges are merged whatever their monotony.)
               const bool touches = kept > first && ranges.back().End >= sorted[m].Start;
               if (touches &&
                 (ranges.back().Monotone == sorted[m].Monotone ||
