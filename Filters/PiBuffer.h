@@ -18,6 +18,7 @@
 #include <new>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace pisurf
 {
@@ -131,6 +132,39 @@ public:
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
+
+/// DefaultInitAllocator in AllocateLarge's memory: a vector that a new filter object
+/// grows to megabytes takes blocks an earlier one gave back, already faulted in,
+/// instead of fresh pages zeroed by the kernel and then again by resize.
+template <typename T>
+class LargeAllocator : public DefaultInitAllocator<T>
+{
+public:
+  template <typename U>
+  struct rebind
+  {
+    using other = LargeAllocator<U>;
+  };
+  LargeAllocator() = default;
+  template <typename U>
+  LargeAllocator(const LargeAllocator<U>&) noexcept
+  {
+  }
+  T* allocate(std::size_t n)
+  {
+    T* p = static_cast<T*>(AllocateLarge(n * sizeof(T)));
+    if (!p)
+    {
+      throw std::bad_alloc();
+    }
+    return p;
+  }
+  void deallocate(T* p, std::size_t) noexcept { ReleaseLarge(p); }
+};
+
+/// A std::vector of plain values in AllocateLarge's memory, uninitialized by resize.
+template <typename T>
+using LargeVector = std::vector<T, LargeAllocator<T>>;
 }
 
 #endif

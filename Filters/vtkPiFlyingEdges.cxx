@@ -80,7 +80,8 @@ struct FactorCache
 {
   std::vector<double> Key;   // the factor's content (see FactorKey)
   int Coefficients = 0;      // per row: degree + 1
-  std::vector<double> Rows;  // per grid row (j, k): the restricted coefficients
+  pisurf::LargeVector<double> Rows; // per grid row (j, k): the restricted coefficients
+                                    // (uninitialized until RowDone says so)
   std::vector<char> RowDone; // per grid row: Rows holds it
   bool Used = false;          // matched by a factor of the current execution
 };
@@ -109,8 +110,10 @@ struct vtkPiFlyingEdges::vtkInternals
   pisurf::Buffer<double> Values;
   // The rows the active blocks need and their factors' restrictions (kept between
   // executions, like Values, so that a re-execution does not fault their pages in again).
-  std::vector<vtkIdType> RowIndex, Rows;
-  std::vector<double> Coefficients;
+  // (In AllocateLarge's memory, for a new mesher's sake: see pisurf::LargeAllocator.)
+  pisurf::LargeVector<vtkIdType> RowIndex;
+  std::vector<vtkIdType> Rows;
+  pisurf::LargeVector<double> Coefficients;
   std::shared_ptr<const pisurf::Field> Field;
   std::vector<double> CacheGrid; // the grid the factor caches belong to
   std::vector<FactorCache> Factors;
@@ -525,7 +528,7 @@ struct RestrictRows
   const pisurf::ProductKernel* Kernel;
   const Grid* G;
   const std::vector<vtkIdType>* Rows;
-  std::vector<double>* Coefficients;
+  pisurf::LargeVector<double>* Coefficients;
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
@@ -548,8 +551,8 @@ struct SampleBlocks
   const pisurf::ProductKernel* Kernel; // null when sampling Field
   const pisurf::Field* Field;
   Grid* G;
-  const std::vector<vtkIdType>* RowIndex; // per row (j, k): its index in the coefficients
-  const std::vector<double>* Coefficients;
+  const pisurf::LargeVector<vtkIdType>* RowIndex; // per row (j, k): its index in the coefficients
+  const pisurf::LargeVector<double>* Coefficients;
   vtkPiFlyingEdges* Algorithm;
   std::atomic<bool>* Abort;
 
@@ -640,7 +643,7 @@ struct SampleRows
   const pisurf::ProductKernel* Kernel;
   Grid* G;
   const std::vector<vtkIdType>* Rows; // the rows (k·Dims[1] + j) in coefficient order
-  const std::vector<double>* Coefficients;
+  const pisurf::LargeVector<double>* Coefficients;
   vtkPiFlyingEdges* Algorithm;
   std::atomic<bool>* Abort;
   // Per block row (bz·Count[1] + by): its first and one past its last active x block.
@@ -853,7 +856,7 @@ struct RestrictCachedRows
   const std::vector<vtkIdType>* Rows;
   const std::vector<FactorCache*>* Caches;
   const pisurf::ProductKernel* Kernel;
-  std::vector<double>* Coefficients;
+  pisurf::LargeVector<double>* Coefficients;
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
@@ -1912,8 +1915,8 @@ struct VertexAttributes
   vtkIdType Total;
   // The sampling's row restrictions (PASS 2), per row (j, k) its index or −1; null for
   // a field.
-  const std::vector<vtkIdType>* RowIndex;
-  const std::vector<double>* RowCoefficients;
+  const pisurf::LargeVector<vtkIdType>* RowIndex;
+  const pisurf::LargeVector<double>* RowCoefficients;
   size_t RowCoefficientCount;
 
   // Newton's method on F along the edge x = x0 + s·dx, s ∈ [0, 1], from s = t, kept in
@@ -2950,7 +2953,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   }
 
   // PASS 2: restrict the factors to the rows the active blocks need.
-  std::vector<vtkIdType>& rowIndex = this->Internals->RowIndex;
+  pisurf::LargeVector<vtkIdType>& rowIndex = this->Internals->RowIndex;
   std::vector<vtkIdType>& rows = this->Internals->Rows;
   rowIndex.assign(vtkIdType(g.Dims[1]) * g.Dims[2], -1);
   rows.clear();
@@ -2983,7 +2986,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   std::vector<FactorCache*> caches =
     PrepareFactorCaches(this->Internals->CacheGrid, this->Internals->Factors, kernel.get(), g);
   // (Every entry is written below: resized, not cleared.)
-  std::vector<double>& coefficients = this->Internals->Coefficients;
+  pisurf::LargeVector<double>& coefficients = this->Internals->Coefficients;
   if (!kernel)
   {
     coefficients.clear();
