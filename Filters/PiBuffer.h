@@ -106,20 +106,49 @@ private:
 
 /// A std::vector allocator whose resize leaves new elements of trivial types
 /// uninitialized (default-initialized instead of value-initialized), for vectors that
-/// grow by a resize the threads then fill.
-template <typename T>
+/// grow by a resize the threads then fill. With Large, its memory is AllocateLarge's:
+/// a vector that a new filter object grows to megabytes takes blocks an earlier one gave
+/// back, already faulted in, instead of fresh pages zeroed by the kernel.
+template <typename T, bool Large = false>
 class DefaultInitAllocator : public std::allocator<T>
 {
 public:
   template <typename U>
   struct rebind
   {
-    using other = DefaultInitAllocator<U>;
+    using other = DefaultInitAllocator<U, Large>;
   };
   DefaultInitAllocator() = default;
   template <typename U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  DefaultInitAllocator(const DefaultInitAllocator<U, Large>&) noexcept
   {
+  }
+  T* allocate(std::size_t n)
+  {
+    if constexpr (Large)
+    {
+      T* p = static_cast<T*>(AllocateLarge(n * sizeof(T)));
+      if (!p)
+      {
+        throw std::bad_alloc();
+      }
+      return p;
+    }
+    else
+    {
+      return std::allocator<T>::allocate(n);
+    }
+  }
+  void deallocate(T* p, std::size_t n) noexcept
+  {
+    if constexpr (Large)
+    {
+      ReleaseLarge(p);
+    }
+    else
+    {
+      std::allocator<T>::deallocate(p, n);
+    }
   }
   template <typename U>
   void construct(U* p)
@@ -133,38 +162,9 @@ public:
   }
 };
 
-/// DefaultInitAllocator in AllocateLarge's memory: a vector that a new filter object
-/// grows to megabytes takes blocks an earlier one gave back, already faulted in,
-/// instead of fresh pages zeroed by the kernel and then again by resize.
-template <typename T>
-class LargeAllocator : public DefaultInitAllocator<T>
-{
-public:
-  template <typename U>
-  struct rebind
-  {
-    using other = LargeAllocator<U>;
-  };
-  LargeAllocator() = default;
-  template <typename U>
-  LargeAllocator(const LargeAllocator<U>&) noexcept
-  {
-  }
-  T* allocate(std::size_t n)
-  {
-    T* p = static_cast<T*>(AllocateLarge(n * sizeof(T)));
-    if (!p)
-    {
-      throw std::bad_alloc();
-    }
-    return p;
-  }
-  void deallocate(T* p, std::size_t) noexcept { ReleaseLarge(p); }
-};
-
 /// A std::vector of plain values in AllocateLarge's memory, uninitialized by resize.
 template <typename T>
-using LargeVector = std::vector<T, LargeAllocator<T>>;
+using LargeVector = std::vector<T, DefaultInitAllocator<T, true>>;
 }
 
 #endif

@@ -110,7 +110,7 @@ struct vtkPiFlyingEdges::vtkInternals
   pisurf::Buffer<double> Values;
   // The rows the active blocks need and their factors' restrictions (kept between
   // executions, like Values, so that a re-execution does not fault their pages in again).
-  // (In AllocateLarge's memory, for a new mesher's sake: see pisurf::LargeAllocator.)
+  // (In AllocateLarge's memory, for a new mesher's sake: see pisurf::DefaultInitAllocator.)
   pisurf::LargeVector<vtkIdType> RowIndex;
   std::vector<vtkIdType> Rows;
   pisurf::LargeVector<double> Coefficients;
