@@ -88,6 +88,24 @@ long double ProductMinus(const std::vector<std::vector<double>>& factors, double
   return p - r;
 }
 
+// Its derivative in long double (Horner per factor and its derivative, the product rule).
+long double ProductSlope(const std::vector<std::vector<double>>& factors, double t)
+{
+  long double p = 1.0L, dp = 0.0L;
+  for (const auto& f : factors)
+  {
+    long double v = 0.0L, dv = 0.0L;
+    for (size_t k = f.size(); k-- > 0;)
+    {
+      dv = dv * t + v;
+      v = v * t + f[k];
+    }
+    dp = dp * v + p * dv;
+    p *= v;
+  }
+  return dp;
+}
+
 // Against `samples` long-double samples of F on [0, length]: every sign change holds a
 // root (within the tolerance), and every crossing root has F of opposite signs a
 // tolerance before and after it. Returns the number of sign changes seen.
@@ -393,22 +411,6 @@ TEST(RayRoots, CutSegmentReportsEachRootOnce)
     }
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    // F' in long double by the product rule.
-    auto slope = [&](double t) {
-      long double p = 1.0L, dp = 0.0L;
-      for (const auto& f : factors)
-      {
-        long double v = 0.0L, dv = 0.0L;
-        for (size_t k = f.size(); k-- > 0;)
-        {
-          dv = dv * t + v;
-          v = v * t + f[k];
-        }
-        dp = dp * v + p * dv;
-        p *= v;
-      }
-      return dp;
-    };
     const int pieces = static_cast<int>(cuts.size()) - 1;
     std::vector<int> monotone(pieces, 0);
     const int samples = 4000;
@@ -418,7 +420,7 @@ TEST(RayRoots, CutSegmentReportsEachRootOnce)
       int positive = 0, negative = 0;
       for (double t = a; t <= b; t += 0.25 * step)
       {
-        const long double s = slope(t);
+        const long double s = ProductSlope(factors, t);
         positive += s > 0;
         negative += !(s > 0);
       }
