@@ -1624,14 +1624,15 @@ private:
 // belongs to the block that holds its lower end point (half-open ranges, closed at the
 // end of the grid), which numbers its vertex; triangles then find their edges' vertices
 // in the owner's edge masks and row offsets. Mode Count builds the masks and counts
-// both, Edges writes the vertices' edges, Triangles writes the triangles.
+// both; Write then writes each block's vertices' edges and its triangles (a block's
+// own edges' ids from a table it fills as it writes them, other blocks' edges from
+// their masks: Count's, so the blocks need no order).
 struct Contour
 {
   enum Mode
   {
     Count,
-    Edges,
-    Triangles
+    Write
   };
   const Grid* G;
   const Envelope* Outer; // null: plain signs
@@ -1683,6 +1684,8 @@ struct Contour
     return table.Of[mask & 0xffu];
   }
   static int EdgeRow(int axis, int lk, int lj) { return (axis * BlockCells + lk) * BlockCells + lj; }
+  // Where Write keeps the id of the owned edge at local lower end (li, lj, lk) on `axis`.
+  static int OwnedSlot(int axis, int li, int lj, int lk) { return EdgeRow(axis, lk, lj) * BlockCells + li; }
 
   // The vertex id of the crossing edge its block `slot` owns at local lower end
   // (li, lj, lk), each in 0..7: the block's first id, the row's offset and the
@@ -1770,7 +1773,10 @@ struct Contour
             }
         (*this->VertexCount)[s] = vertex;
       }
-      if (this->Pass == Edges)
+      // Write: the vertex id of each owned crossing edge, by its local lower end and
+      // axis, for this block's triangles (an owned edge's id without the masks' sums).
+      vtkIdType ids[3 * BlockCells * BlockCells * BlockCells];
+      if (this->Pass == Write)
       {
         // The next block's values, long evicted since the sampling: fetched while this
         // block's edges are read (their loads were the pass's main stall).
@@ -1812,10 +1818,10 @@ struct Contour
                 (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
                 (*this->VertexEnds)[2 * vertex] = v0;
                 (*this->VertexEnds)[2 * vertex + 1] = v1;
+                ids[OwnedSlot(axis, li, lj, lk)] = vertex;
                 ++vertex;
               }
             }
-        continue;
       }
       if (c[2] < this->SlabBegin || c[2] >= this->SlabEnd)
       {
@@ -1857,10 +1863,10 @@ struct Contour
               {
                 const pisurf::mc::EdgeStart& edge = pisurf::mc::EdgeStarts.Of[list[e + q]];
                 const int ei = li + edge.Lo[0], ej = lj + edge.Lo[1], ek = lk + edge.Lo[2];
-                // An edge this block owns (lower end at local 0..7): its own masks,
-                // without finding the block (VertexOf's numbers).
+                // An edge this block owns (lower end at local 0..7): the id written
+                // above; another block's: from its masks (VertexOf).
                 const vtkIdType id = (ei < BlockCells && ej < BlockCells && ek < BlockCells)
-                  ? this->OwnedVertex(static_cast<int>(s), ei, ej, ek, edge.Axis)
+                  ? ids[OwnedSlot(edge.Axis, ei, ej, ek)]
                   : this->VertexOf(i + edge.Lo[0], j + edge.Lo[1], k + edge.Lo[2], edge.Axis);
                 // Corners 1 and 2 swapped: the table winds triangles for "inside =
                 // positive", ours face ∇F.
@@ -2237,7 +2243,7 @@ struct VertexAttributes
     if ((va > 0 && vb > 0) || (va < 0 && vb < 0))
     {
       // Ends of one sign: the edge enters a thin wall the grid does not resolve (the
-      // envelope gave the far end the other sign, see the Edges pass, and t is the end
+      // envelope gave the far end the other sign, see Contour's Write pass, and t is the end
       // whose sign is its own): the surface nearest to that end.
       if (t != 0.0 && t != 1.0)
       {
@@ -3154,7 +3160,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   // write them.
   const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
   std::vector<vtkIdType> vertexCount(activeCount + 1, 0), triangleCount(activeCount + 1, 0);
-  // (not initialized on allocation: the Edges pass writes every entry)
+  // (not initialized on allocation: the Write pass writes every entry)
   pisurf::Buffer<vtkIdType>& vertexEdge = this->Internals->VertexEdge;
   pisurf::Buffer<double>& vertexT = this->Internals->VertexT;
   pisurf::Buffer<double>& vertexEnds = this->Internals->VertexEnds;
@@ -3223,10 +3229,8 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     PiAllocateLarge(connectivity.GetPointer(), 3 * triangles);
     contour.TriangleIds = connectivity->GetPointer(0);
   }
-  // Edge tables first (triangles look up neighbours' tables), then the triangles.
-  contour.Pass = Contour::Edges;
-  PiFor(0, activeCount, 8, contour);
-  contour.Pass = Contour::Triangles;
+  // The vertices' edges and the triangles (which look up neighbours' Count tables).
+  contour.Pass = Contour::Write;
   PiFor(0, activeCount, 8, contour);
   if (pieces > 1)
   {

@@ -175,6 +175,9 @@ public:
   /// Degree 4 with only even powers of x, y and z (a quadric of their squares).
   bool IsEvenQuartic() const { return this->EvenQuartic; }
   const double* GetQuadric() const { return this->Q; }
+  /// IsEvenQuartic(): the dense coefficients of the quadric of the squares (x², y², z²),
+  /// in GetQuadric()'s order.
+  const double* GetEvenQuadric() const { return this->Q2; }
   /// At p and at the six points p ± step[a]·e_a, with the gradient at p, in one pass:
   /// the terms are summed by the power of each variable separately (three partial-sum
   /// polynomials, 6 multiplications per term), then each axis is a univariate Horner

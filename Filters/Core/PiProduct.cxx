@@ -108,6 +108,7 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
   this->AllPolynomial = std::all_of(
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
   this->StarQuadric.assign(this->Factors.size(), 0);
+  this->StarEvenQuartic.assign(this->Factors.size(), 0);
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     Factor& f = this->Factors[k];
@@ -117,6 +118,7 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
       this->LineCoefficients += static_cast<size_t>(std::max(f.Polynomial.Poly.GetDegree(), 0)) + 1;
       // (PrepareIntervals sets Diagonal)
       this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && f.Polynomial.Diagonal;
+      this->StarEvenQuartic[k] = f.Polynomial.Poly.IsEvenQuartic() && f.Polynomial.Diagonal;
     }
   }
   this->PackQuadrics();
@@ -125,6 +127,7 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
 namespace
 {
 typedef double V4 __attribute__((vector_size(32)));
+typedef long long I4 __attribute__((vector_size(32)));
 // Four doubles in memory aligned to 8 bytes only (no functions taking or returning V4:
 // their ABI depends on whether AVX is enabled).
 typedef double V4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
@@ -513,7 +516,6 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   // scaled one (whose rescaling is by exact powers of two); and F must be finite.
   // Otherwise the point goes through EvaluateRestricted. The same operations in the
   // same order per point (no FMA: see PISURF_AVX2_CLONES), so the same bits.
-  typedef long long I4 __attribute__((vector_size(32)));
   constexpr int Lanes = 4, Vectors = 4, Group = Lanes * Vectors;
   const double bound = this->PlainBound;
   const double inverse = 1.0 / bound;
@@ -825,6 +827,76 @@ struct PlainTest
   }
 };
 
+// v[i] = {c[i], c[i], c[i], c[i]} for i < n.
+__attribute__((always_inline)) static inline void Splat(const double* c, int n, V4* v)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    v[i] = V4{ c[i], c[i], c[i], c[i] };
+  }
+}
+
+// PlainTest at four points (lanes), with its operations: the same verdicts.
+struct PlainTest4
+{
+  I4 Finite = I4{ 0, 0, 0, 0 } - 1;
+  V4 SmallProduct = V4{ 1, 1, 1, 1 }, BigProduct = V4{ 1, 1, 1, 1 };
+  void Add(const V4& f, const V4* g)
+  {
+    const I4 magnitude = I4{ 0, 0, 0, 0 } + 0x7fffffffffffffffLL; // (std::fabs)
+    const V4 a = (V4)((I4)f & magnitude), g0 = (V4)((I4)g[0] & magnitude),
+             g1 = (V4)((I4)g[1] & magnitude), g2 = (V4)((I4)g[2] & magnitude);
+    const V4 zero = V4{ 0, 0, 0, 0 }, one = V4{ 1, 1, 1, 1 }, big = zero + Big;
+    this->Finite = this->Finite & (a > zero) & (a <= big) & (g0 <= big) & (g1 <= big) & (g2 <= big);
+    // std::min(x, y) is y < x ? y : x, std::max(x, y) is x < y ? y : x (NaN included)
+    this->SmallProduct *= a < one ? a : one;
+    const V4 m1 = one < a ? a : one, m2 = g0 < g1 ? g1 : g0, m3 = m1 < m2 ? m2 : m1;
+    this->BigProduct *= m3 < g2 ? g2 : m3;
+  }
+  bool Plain(int l) const
+  {
+    return this->Finite[l] != 0 && this->SmallProduct[l] >= 0x1p-250 &&
+      this->BigProduct[l] <= 0x1p250;
+  }
+};
+
+// FinishPlainVertex's plain path at four points (lanes; the first `count` written) from
+// each factor's values f[k] and gradients g[k] there: its operations in its order (the
+// same bits). (FinishVertex's SafeLdexp(|G|, 0) is |G| itself.)
+__attribute__((always_inline)) static inline void FinishPlainVertices(const V4* f,
+  const V4 (*g)[3], size_t factors, int count, double (*normal)[3], double* gradientNorm,
+  int* nearest)
+{
+  const V4 zero = V4{ 0, 0, 0, 0 }, infinity = zero + std::numeric_limits<double>::infinity();
+  V4 best = infinity, index = zero;
+  V4 P = zero + 1.0, G[3] = { zero, zero, zero };
+  for (size_t k = 0; k < factors; ++k)
+  {
+    // (KeepNearest: at k = 0 every lane takes)
+    const V4 g2 = g[k][0] * g[k][0] + g[k][1] * g[k][1] + g[k][2] * g[k][2];
+    const V4 d = g2 > zero ? f[k] * f[k] / g2 : (f[k] == zero ? zero : infinity);
+    const I4 take = (d < best) | (I4{ 0, 0, 0, 0 } - (k == 0 ? 1 : 0));
+    index = take ? zero + static_cast<double>(k) : index;
+    best = take ? d : best;
+    for (int c = 0; c < 3; ++c)
+    {
+      G[c] = G[c] * f[k] + P * g[k][c];
+    }
+    P *= f[k];
+  }
+  const V4 squared = G[0] * G[0] + G[1] * G[1] + G[2] * G[2];
+  for (int l = 0; l < count; ++l)
+  {
+    const double gn = std::sqrt(squared[l]);
+    gradientNorm[l] = gn;
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[l][c] = gn > 0 && std::isfinite(gn) ? G[c][l] / gn : 0.0;
+    }
+    nearest[l] = static_cast<int>(index[l]);
+  }
+}
+
 // One group of four quadrics (as LoadQuadricGroup reads them) at p: the values and
 // gradients of factors k0.. (of `count`) into f and g, each added to the plain test;
 // QuadricWithGradient's operations, four at a time.
@@ -890,55 +962,112 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
     }
     return;
   }
-  // PlainVertexFactors at every point, factor by factor (the points' evaluations are
-  // independent: their chains overlap), then FinishPlainVertex at each.
+  // PlainVertexFactors and FinishPlainVertex at every point: factor by factor, the
+  // points side by side.
   double f[MaxVertices][MaxPlainVertex], g[MaxVertices][MaxPlainVertex][3];
-  PlainTest test[MaxVertices];
-  if (this->QuadricStride > 0)
+  // The points as lanes (the first repeated where there are fewer than four), for the
+  // quadrics and quartics in the squares in diagonal frames: each evaluated at the four
+  // points at once, with the scalar path's operations in its order (the same bits).
+  static_assert(MaxVertices == 4, "the lanes of V4");
+  V4 px, py, pz;
+  for (int l = 0; l < 4; ++l)
   {
-    // Four quadrics at a time, each group read once for all the points.
-    const size_t stride = this->QuadricStride;
-    const double* rows = this->QuadricRows.data();
-    for (size_t k0 = 0; k0 < stride; k0 += 4)
-    {
-      V4 scale[3], shift[3], q[10];
-      LoadQuadricGroup(rows, stride, k0, scale, shift, q);
-      for (int j = 0; j < count; ++j)
-      {
-        QuadricGroupAt(scale, shift, q, p[j], k0, factors, f[j], g[j], test[j]);
-      }
-    }
-    for (int j = 0; j < count; ++j)
-    {
-      this->FinishPlainVertex(
-        f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, test[j].Plain());
-    }
-    return;
+    const int j = l < count ? l : 0;
+    px[l] = p[j][0];
+    py[l] = p[j][1];
+    pz[l] = p[j][2];
   }
+  // Each factor's values and gradients at the lanes, tested lane by lane (PlainTest4).
+  V4 fv[MaxPlainVertex], gv[MaxPlainVertex][3];
+  PlainTest4 plain;
   for (size_t k = 0; k < factors; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
-    if (this->StarQuadric[k])
+    bool done = false;
+    if (this->StarQuadric[k] || this->StarEvenQuartic[k])
     {
-      for (int j = 0; j < count; ++j)
+      // PolynomialFactor::EvaluateWithGradient: ToLocalDiagonal, the local gradient, A's
+      // diagonal times it.
+      const V4 x = pf.A[0][0] * px + pf.B[0], y = pf.A[1][1] * py + pf.B[1],
+               z = pf.A[2][2] * pz + pf.B[2];
+      V4 gl[3];
+      if (this->StarQuadric[k])
       {
-        f[j][k] = pf.QuadricWithGradient(p[j], g[j][k]);
-        test[j].Add(f[j][k], g[j][k]);
+        // (pisurf::QuadricWithGradient)
+        V4 q[10] = {};
+        Splat(pf.Poly.GetQuadric(), 10, q);
+        QuadricGradientOf(q, x, y, z, gl);
+        QuadricValueOf(q, x, y, z, fv[k]);
+        done = true;
+      }
+      else
+      {
+        // (Polynomial3::EvaluateWithGradient's quadric of the squares, for points whose
+        // powers cannot overflow: all of them, but for far points off any model)
+        bool near = true;
+        for (int l = 0; l < 4; ++l)
+        {
+          near = near && std::fabs(x[l]) < 1e30 && std::fabs(y[l]) < 1e30 && std::fabs(z[l]) < 1e30;
+        }
+        if (near)
+        {
+          V4 q[10] = {};
+          Splat(pf.Poly.GetEvenQuadric(), 10, q);
+          const V4 a = x * x, b = y * y, c = z * z;
+          V4 gs[3];
+          QuadricValueOf(q, a, b, c, fv[k]);
+          QuadricGradientOf(q, a, b, c, gs);
+          gl[0] = 2.0 * x * gs[0];
+          gl[1] = 2.0 * y * gs[1];
+          gl[2] = 2.0 * z * gs[2];
+          done = true;
+        }
+      }
+      if (done)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          gv[k][a] = pf.A[a][a] * gl[a];
+        }
       }
     }
-    else
+    if (!done)
     {
-      for (int j = 0; j < count; ++j)
+      for (int l = 0; l < 4; ++l)
       {
-        f[j][k] = pf.EvaluateWithGradient(p[j], g[j][k]);
-        test[j].Add(f[j][k], g[j][k]);
+        double gl[3];
+        fv[k][l] = pf.EvaluateWithGradient(p[l < count ? l : 0], gl);
+        for (int a = 0; a < 3; ++a)
+        {
+          gv[k][a][l] = gl[a];
+        }
       }
     }
+    plain.Add(fv[k], gv[k]);
   }
+  bool allPlain = true;
   for (int j = 0; j < count; ++j)
   {
+    allPlain = allPlain && plain.Plain(j);
+  }
+  if (allPlain)
+  {
+    FinishPlainVertices(fv, gv, factors, count, normal, gradientNorm, nearest);
+    return;
+  }
+  // (Some point needs the scaled product: each point by FinishPlainVertex.)
+  for (int j = 0; j < count; ++j)
+  {
+    for (size_t k = 0; k < factors; ++k)
+    {
+      f[j][k] = fv[k][j];
+      for (int a = 0; a < 3; ++a)
+      {
+        g[j][k][a] = gv[k][a][j];
+      }
+    }
     this->FinishPlainVertex(
-      f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, test[j].Plain());
+      f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, plain.Plain(j));
   }
 }
 

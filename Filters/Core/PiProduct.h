@@ -86,9 +86,13 @@ public:
   /// if asked, ln|∇F| without clamping (−inf where ∇F = 0).
   void EvaluateVertex(const double p[3], double normal[3], double& gradientNorm, int& nearest,
     double* logGradientNorm = nullptr) const;
-  /// EvaluateVertex at `count` points (up to MaxVertices), the same results: each factor
-  /// is evaluated at every point before the next factor, so that the points'
-  /// independent evaluations overlap (the mesher's vertices, a few at a time).
+  /// EvaluateVertex at `count` points (up to MaxVertices), the same results (bit for
+  /// bit): each factor is evaluated at every point before the next factor, the points
+  /// as the four lanes of vector instructions where the factor is a quadric or a quartic
+  /// in the squares in a diagonal frame (spheres, ellipsoids, axis-aligned cylinders,
+  /// tori and superquadrics of exponent 4, centred expressions), and the product rule,
+  /// normal and nearest factor likewise where the plain product holds at every point
+  /// (the mesher's vertices, four at a time).
   static constexpr int MaxVertices = 4;
   void EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
     double* gradientNorm, int* nearest) const;
@@ -249,6 +253,10 @@ private:
   // Per factor: a quadric in a diagonal frame (evaluated inline by EvaluateVertex,
   // EvaluateVertexStar and RestrictToAxis).
   std::vector<unsigned char> StarQuadric;
+  // Per factor: a quartic in the squares (IsEvenQuartic) in a diagonal frame (tori and
+  // superquadrics about their centre, centred expressions): EvaluateVertices evaluates
+  // it, like the StarQuadric ones, at four points per instruction.
+  std::vector<unsigned char> StarEvenQuartic;
   // When every factor is a quadric of degree 2 in a diagonal frame (spheres, ellipsoids,
   // axis-aligned cylinders: the commonest products) and there are at most
   // MaxPlainVertex of them: their frames and coefficients as 16 rows (A00 A11 A22 B0 B1

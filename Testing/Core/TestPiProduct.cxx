@@ -1234,6 +1234,109 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
   EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-12);
 }
 
+// EvaluateVertices (the flying-edges mesher's vertices, four at a time: the quadrics and
+// quartics in the squares of axis-aligned primitives evaluated at the four points per
+// instruction, the product and normal likewise) gives each point EvaluateVertex's bits:
+// axis-aligned and rotated primitives, tori and superellipsoids (quartics in the
+// squares), centred expressions, generic factors; 1 to 4 points; points where a factor
+// is exactly 0, where the plain product overflows (the scaled path) and far points.
+TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
+{
+  auto same = [](double a, double b) {
+    std::uint64_t x, y;
+    std::memcpy(&x, &a, sizeof x);
+    std::memcpy(&y, &b, sizeof y);
+    return x == y;
+  };
+  auto check = [&](const ProductKernel& k, const std::vector<Point>& points, const char* what) {
+    const int count = static_cast<int>(points.size());
+    double p[ProductKernel::MaxVertices][3], n[ProductKernel::MaxVertices][3];
+    double g[ProductKernel::MaxVertices];
+    int nearest[ProductKernel::MaxVertices];
+    for (int j = 0; j < count; ++j)
+      std::copy(points[j].begin(), points[j].end(), p[j]);
+    k.EvaluateVertices(count, p, n, g, nearest);
+    for (int j = 0; j < count; ++j)
+    {
+      double n1[3], g1;
+      int near1;
+      k.EvaluateVertex(p[j], n1, g1, near1);
+      EXPECT_TRUE(same(g[j], g1)) << what << " point " << j << ": " << g[j] << " vs " << g1;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_TRUE(same(n[j][c], n1[c])) << what << " point " << j << " normal " << c;
+      EXPECT_EQ(nearest[j], near1) << what << " point " << j;
+    }
+  };
+  auto aligned = [](Random& rng) {
+    PrimitiveSpec s;
+    const int types[] = { 0, 1, 2, 3, 5, 6, 9, 11 };
+    s.Type = static_cast<PrimitiveType>(types[rng.Integer(0, 7)]);
+    s.Radius = rng.Uniform(0.5, 1.5);
+    for (double& r : s.Radii)
+      r = rng.Uniform(0.5, 1.5);
+    s.MajorRadius = rng.Uniform(1.0, 1.5);
+    s.MinorRadius = rng.Uniform(0.2, 0.5);
+    s.Exponent = 4;
+    s.Angle = rng.Uniform(10, 70);
+    // (centred about (0.7, −0.2, 0.4): a quartic in the squares there)
+    s.Expression = "((x-0.7)^2 + (y+0.2)^2 + 2*(z-0.4)^2 + 0.3)^2 - 3*((x-0.7)^2 + (y+0.2)^2)";
+    for (int i = 0; i < 3; ++i)
+      s.Center[i] = rng.Uniform(-0.5, 0.5);
+    s.Orient = rng.Integer(0, 1) ? Orientation::Default : Orientation::Axis;
+    const int axis = rng.Integer(0, 2);
+    s.Axis[0] = axis == 0;
+    s.Axis[1] = axis == 1;
+    s.Axis[2] = axis == 2;
+    s.Scale = rng.Uniform(0.5, 2.0) * (rng.Integer(0, 1) ? 1 : -1);
+    return FromSpec(s);
+  };
+  Random rng(46);
+  int evenQuartics = 0;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::vector<Factor> factors;
+    const int n = 1 + trial % 6;
+    for (int i = 0; i < n; ++i)
+      factors.push_back(trial % 5 == 4 && i == 0 ? RandomPrimitive(rng) : aligned(rng));
+    if (trial % 7 == 6)
+      factors.push_back(Wave());
+    for (Factor f : factors)
+    {
+      f.Polynomial.PrepareIntervals(); // (sets Diagonal, as the kernel does)
+      evenQuartics += f.IsPolynomial && f.Polynomial.Poly.IsEvenQuartic() && f.Polynomial.Diagonal;
+    }
+    const ProductKernel k(factors, trial % 2 ? 0.05 : 0.0);
+    std::vector<Point> points;
+    for (int j = 0; j < 1 + trial % 4; ++j)
+      points.push_back(rng.InBox(-2, 2));
+    check(k, points, "random");
+  }
+  EXPECT_GT(evenQuartics, 50); // (the case the four-point path is for)
+  // A point exactly on a sphere (its factor 0: not plain) beside ordinary ones.
+  const double o[3] = { 0, 0, 0 }, c1[3] = { 3, 0, 0 };
+  PrimitiveSpec torus;
+  torus.Type = PrimitiveType::Torus;
+  torus.MajorRadius = 1.0;
+  torus.MinorRadius = 0.25;
+  const ProductKernel onSphere({ Sphere(o, 1.0), FromSpec(torus), Sphere(c1, 0.5) }, 0.1);
+  check(onSphere, { { 0.3, 0.2, 0.1 }, { 1.0, 0.0, 0.0 }, { -0.5, 0.5, 0.2 }, { 2, 1, 0 } },
+    "zero factor");
+  // 30 spheres about 1e5 away and a near one, with a torus: the plain product overflows.
+  std::vector<Factor> many;
+  for (int i = 0; i < 30; ++i)
+  {
+    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
+    many.push_back(Sphere(c, 1.0));
+  }
+  many.push_back(FromSpec(torus));
+  check(ProductKernel(many, 1.0), { { 0.3, -0.2, 0.1 }, { 1.1, 0.2, 0.0 }, { 0, 1, 0.2 } },
+    "scaled product");
+  // A point whose local coordinates reach 1e30 (the quartic's term-wise path) among near
+  // ones.
+  check(ProductKernel({ FromSpec(torus), Sphere(o, 2.0) }, 0.5),
+    { { 0.5, 0.5, 0.0 }, { 2e30, 0.0, 1.0 }, { 1.25, 0.0, 0.0 } }, "far point");
+}
+
 // pisurf::Frexp and pisurf::Ldexp replace std::frexp and std::ldexp in the products and
 // the ray roots: they must give the same bits for every double, the special ones too.
 TEST(Float, FrexpAndLdexpHaveTheLibraryBits)
