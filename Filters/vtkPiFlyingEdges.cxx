@@ -1557,8 +1557,12 @@ private:
 
 
   // The reached points of an active block grown through its free points to a fixed
-  // point: along x by shifts within a row, along y and z from the neighbouring rows, in
-  // sweeps up and down until a pair of sweeps changes nothing.
+  // point: along x by shifts within a row, along y and z into the neighbouring rows. A
+  // worklist of rows (bit r of `dirty`: row r may reach further), at first every row
+  // holding reached points; a row taken from it grows within itself, then passes its
+  // points to its four neighbouring rows, and a neighbour that gains any joins the
+  // list. (Other threads may add points to the block meanwhile: they queue the block
+  // again, see Run.)
   void FloodBlock(int slot)
   {
     int c[3];
@@ -1568,46 +1572,63 @@ private:
     const int ny = n[1], nz = n[2];
     const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
     std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
-    auto spread = [](unsigned r, unsigned f) {
-      for (;;)
+    static_assert(Rows <= 128, "two words of row bits");
+    std::uint64_t dirty[2] = { 0, 0 };
+    for (int lk = 0; lk <= nz; ++lk)
+      for (int lj = 0; lj <= ny; ++lj)
       {
-        const unsigned next = (r | (r << 1) | (r >> 1)) & f;
-        if (next == r)
+        const int r = lk * BlockPoints + lj;
+        if (LoadRow(rr + r) != 0)
         {
-          return r;
+          dirty[r >> 6] |= std::uint64_t(1) << (r & 63);
         }
-        r = next;
+      }
+    auto pass = [&](unsigned from, int to) {
+      const unsigned add = from & fr[to] & ~LoadRow(rr + to);
+      if (add && AddToRow(rr + to, add))
+      {
+        dirty[to >> 6] |= std::uint64_t(1) << (to & 63);
       }
     };
-    for (bool changed = true; changed;)
+    while (dirty[0] | dirty[1])
     {
-      changed = false;
-      for (int lk = 0; lk <= nz; ++lk)
-        for (int lj = 0; lj <= ny; ++lj)
+      const int word = dirty[0] ? 0 : 1;
+      const int r = 64 * word + __builtin_ctzll(dirty[word]);
+      dirty[word] &= dirty[word] - 1;
+      // Within the row: the free runs that hold a reached point.
+      const unsigned f = fr[r];
+      const unsigned old = LoadRow(rr + r);
+      unsigned x = old;
+      for (;;)
+      {
+        const unsigned next = (x | (x << 1) | (x >> 1)) & f;
+        if (next == x)
         {
-          const int r = lk * BlockPoints + lj;
-          const unsigned old = LoadRow(rr + r);
-          unsigned from =
-            (lj > 0 ? LoadRow(rr + r - 1) : 0u) | (lk > 0 ? LoadRow(rr + r - BlockPoints) : 0u);
-          const unsigned x = spread(old | (from & fr[r]), fr[r]);
-          if (x != old && AddToRow(rr + r, x & ~old))
-          {
-            changed = true;
-          }
+          break;
         }
-      for (int lk = nz; lk >= 0; --lk)
-        for (int lj = ny; lj >= 0; --lj)
-        {
-          const int r = lk * BlockPoints + lj;
-          const unsigned old = LoadRow(rr + r);
-          unsigned from = (lj < ny ? LoadRow(rr + r + 1) : 0u) |
-            (lk < nz ? LoadRow(rr + r + BlockPoints) : 0u);
-          const unsigned x = spread(old | (from & fr[r]), fr[r]);
-          if (x != old && AddToRow(rr + r, x & ~old))
-          {
-            changed = true;
-          }
-        }
+        x = next;
+      }
+      if (x != old)
+      {
+        AddToRow(rr + r, x & ~old);
+      }
+      const int lj = r % BlockPoints, lk = r / BlockPoints;
+      if (lj > 0)
+      {
+        pass(x, r - 1);
+      }
+      if (lj < ny)
+      {
+        pass(x, r + 1);
+      }
+      if (lk > 0)
+      {
+        pass(x, r - BlockPoints);
+      }
+      if (lk < nz)
+      {
+        pass(x, r + BlockPoints);
+      }
     }
   }
 
@@ -2359,9 +2380,12 @@ struct VertexAttributes
   }
 
   // Refine's usual case for a product kernel, set up to run beside other vertices': a
-  // strict bracket of plain values, Newton's method on the row's restriction (an x
-  // edge) or on the factors restricted to the edge's line. Where Newton cannot decide
-  // (−1), Refine takes the vertex from the start (the same steps, then its fallbacks).
+  // strict bracket of plain values, Newton's method on the factors evaluated at the
+  // edge's points, four edges per vector instruction, where every factor is an
+  // axis-aligned quadric or quartic in the squares (ProductKernel::HasStarFactorsOnly);
+  // otherwise on the row's restriction (an x edge) or on the factors restricted to the
+  // edge's line. Where Newton cannot decide (−1), Refine takes the vertex from the start
+  // (the same steps, then its fallbacks).
   static constexpr int MaxLanes = pisurf::ProductKernel::MaxVertices;
   struct Lane
   {
@@ -2386,8 +2410,10 @@ struct VertexAttributes
       return false;
     }
     const int axis = e.Axis;
-    lane.Row = this->RowOf(e, lane.RowT0);
-    if (!lane.Row)
+    // (Star factors only: NewtonLanes evaluates them at the edge's points themselves.)
+    const bool star = kernel->HasStarFactorsOnly();
+    lane.Row = star ? nullptr : this->RowOf(e, lane.RowT0);
+    if (!star && !lane.Row)
     {
       if (kernel->GetLineCoefficientCount() > sizeof(lane.Line) / sizeof(double) ||
         !kernel->RestrictToAxis(e.A, axis, lane.Line))
@@ -2424,6 +2450,44 @@ struct VertexAttributes
   // evaluations of all unfinished lanes, then their steps.
   void NewtonLanes(Lane* lanes, int count) const
   {
+    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    if (kernel->HasStarFactorsOnly())
+    {
+      // Every lane at once, as vector lanes (ProductKernel::EvaluateOnSegments), the
+      // finished ones too (their results unused) until all have finished.
+      double a[MaxLanes][3], d[MaxLanes][3];
+      for (int k = 0; k < count; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          a[k][c] = lanes[k].E.A[c];
+          d[k][c] = lanes[k].E.B[c] - lanes[k].E.A[c];
+        }
+      }
+      for (;;)
+      {
+        double s[MaxLanes], v[MaxLanes], slope[MaxLanes];
+        bool ok[MaxLanes];
+        bool any = false;
+        for (int k = 0; k < count; ++k)
+        {
+          s[k] = lanes[k].Newton.S;
+          any = any || !lanes[k].Newton.Done;
+        }
+        if (!any)
+        {
+          return;
+        }
+        kernel->EvaluateOnSegments(count, a, d, s, v, slope, ok);
+        for (int k = 0; k < count; ++k)
+        {
+          if (!lanes[k].Newton.Done)
+          {
+            lanes[k].Newton.Step(ok[k], v[k], slope[k]);
+          }
+        }
+      }
+    }
     for (;;)
     {
       double v[MaxLanes], slope[MaxLanes];
@@ -2535,7 +2599,9 @@ struct VertexAttributes
       double t = lanes[j].Newton.Result;
       if (t < 0.0)
       {
-        t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, lanes[j].Row, lanes[j].RowT0);
+        double rowT0;
+        const double* row = this->RowOf(e, rowT0);
+        t = this->Refine(e.A, e.B, e.T, e.Va, e.Vb, row, rowT0);
       }
       for (int k = 0; k < 3; ++k)
       {

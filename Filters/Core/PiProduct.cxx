@@ -121,6 +121,13 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
       this->StarEvenQuartic[k] = f.Polynomial.Poly.IsEvenQuartic() && f.Polynomial.Diagonal;
     }
   }
+  this->StarFactorsOnly = this->AllPolynomial && !this->Factors.empty() &&
+    this->Factors.size() <= MaxPlainVertex;
+  for (size_t k = 0; k < this->Factors.size(); ++k)
+  {
+    this->StarFactorsOnly =
+      this->StarFactorsOnly && (this->StarQuadric[k] || this->StarEvenQuartic[k]);
+  }
   this->PackQuadrics();
 }
 
@@ -836,6 +843,53 @@ __attribute__((always_inline)) static inline void Splat(const double* c, int n, 
   }
 }
 
+// A quadric (quartic false) or a quartic in the squares (true) in the diagonal frame of
+// pf at the four points (x, y, z) (world): its value v and world gradient g, with
+// PolynomialFactor::EvaluateWithGradient's operations (ToLocalDiagonal, the local value
+// and gradient as pisurf::QuadricWithGradient or Polynomial3::EvaluateWithGradient's
+// quadric of the squares, A's diagonal times that): the same bits. False (nothing
+// written) where a quartic's local coordinate reaches 1e30 at some lane (Polynomial3
+// then takes its term-wise path).
+__attribute__((always_inline)) static inline bool StarFactorAt(const PolynomialFactor& pf,
+  bool quartic, const V4& px, const V4& py, const V4& pz, V4& v, V4* g)
+{
+  const V4 x = pf.A[0][0] * px + pf.B[0], y = pf.A[1][1] * py + pf.B[1],
+           z = pf.A[2][2] * pz + pf.B[2];
+  V4 gl[3];
+  V4 q[10] = {};
+  if (!quartic)
+  {
+    Splat(pf.Poly.GetQuadric(), 10, q);
+    QuadricGradientOf(q, x, y, z, gl);
+    QuadricValueOf(q, x, y, z, v);
+  }
+  else
+  {
+    bool near = true;
+    for (int l = 0; l < 4; ++l)
+    {
+      near = near && std::fabs(x[l]) < 1e30 && std::fabs(y[l]) < 1e30 && std::fabs(z[l]) < 1e30;
+    }
+    if (!near)
+    {
+      return false;
+    }
+    Splat(pf.Poly.GetEvenQuadric(), 10, q);
+    const V4 a = x * x, b = y * y, c = z * z;
+    V4 gs[3];
+    QuadricValueOf(q, a, b, c, v);
+    QuadricGradientOf(q, a, b, c, gs);
+    gl[0] = 2.0 * x * gs[0];
+    gl[1] = 2.0 * y * gs[1];
+    gl[2] = 2.0 * z * gs[2];
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    g[a] = pf.A[a][a] * gl[a];
+  }
+  return true;
+}
+
 // PlainTest at four points (lanes), with its operations: the same verdicts.
 struct PlainTest4
 {
@@ -983,54 +1037,8 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
   for (size_t k = 0; k < factors; ++k)
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
-    bool done = false;
-    if (this->StarQuadric[k] || this->StarEvenQuartic[k])
-    {
-      // PolynomialFactor::EvaluateWithGradient: ToLocalDiagonal, the local gradient, A's
-      // diagonal times it.
-      const V4 x = pf.A[0][0] * px + pf.B[0], y = pf.A[1][1] * py + pf.B[1],
-               z = pf.A[2][2] * pz + pf.B[2];
-      V4 gl[3];
-      if (this->StarQuadric[k])
-      {
-        // (pisurf::QuadricWithGradient)
-        V4 q[10] = {};
-        Splat(pf.Poly.GetQuadric(), 10, q);
-        QuadricGradientOf(q, x, y, z, gl);
-        QuadricValueOf(q, x, y, z, fv[k]);
-        done = true;
-      }
-      else
-      {
-        // (Polynomial3::EvaluateWithGradient's quadric of the squares, for points whose
-        // powers cannot overflow: all of them, but for far points off any model)
-        bool near = true;
-        for (int l = 0; l < 4; ++l)
-        {
-          near = near && std::fabs(x[l]) < 1e30 && std::fabs(y[l]) < 1e30 && std::fabs(z[l]) < 1e30;
-        }
-        if (near)
-        {
-          V4 q[10] = {};
-          Splat(pf.Poly.GetEvenQuadric(), 10, q);
-          const V4 a = x * x, b = y * y, c = z * z;
-          V4 gs[3];
-          QuadricValueOf(q, a, b, c, fv[k]);
-          QuadricGradientOf(q, a, b, c, gs);
-          gl[0] = 2.0 * x * gs[0];
-          gl[1] = 2.0 * y * gs[1];
-          gl[2] = 2.0 * z * gs[2];
-          done = true;
-        }
-      }
-      if (done)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          gv[k][a] = pf.A[a][a] * gl[a];
-        }
-      }
-    }
+    const bool done = (this->StarQuadric[k] || this->StarEvenQuartic[k]) &&
+      StarFactorAt(pf, this->StarEvenQuartic[k] != 0, px, py, pz, fv[k], gv[k]);
     if (!done)
     {
       for (int l = 0; l < 4; ++l)
@@ -1068,6 +1076,57 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
     }
     this->FinishPlainVertex(
       f[j], g[j], normal[j], gradientNorm[j], nearest[j], nullptr, plain.Plain(j));
+  }
+}
+
+PISURF_AVX2_CLONES
+void ProductKernel::EvaluateOnSegments(int count, const double (*a)[3], const double (*d)[3],
+  const double* s, double* value, double* slope, bool* ok) const
+{
+  // The points as lanes (the first repeated where there are fewer than four), each
+  // factor's value and gradient there (StarFactorAt), its slope ∇f·d, multiplied into
+  // F and dF/ds by the product rule (MultiplyWithSlope's bound test and operations).
+  V4 px, py, pz, dx, dy, dz;
+  for (int l = 0; l < 4; ++l)
+  {
+    const int j = l < count ? l : 0;
+    dx[l] = d[j][0];
+    dy[l] = d[j][1];
+    dz[l] = d[j][2];
+    px[l] = a[j][0] + s[j] * d[j][0];
+    py[l] = a[j][1] + s[j] * d[j][1];
+    pz[l] = a[j][2] + s[j] * d[j][2];
+  }
+  const V4 zero = V4{ 0, 0, 0, 0 };
+  const I4 magnitude = I4{ 0, 0, 0, 0 } + 0x7fffffffffffffffLL;
+  const V4 bound = zero + this->PlainBound, inverse = zero + 1.0 / this->PlainBound;
+  V4 product = zero + 1.0, derivative = zero;
+  I4 inRange = I4{ 0, 0, 0, 0 } - 1;
+  const size_t factors = this->Factors.size();
+  for (size_t k = 0; k < factors; ++k)
+  {
+    V4 v, g[3];
+    if (!StarFactorAt(
+          this->Factors[k].Polynomial, this->StarEvenQuartic[k] != 0, px, py, pz, v, g))
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        ok[j] = false;
+      }
+      return;
+    }
+    const V4 m = (V4)((I4)v & magnitude);
+    inRange = inRange & ~((m > bound) | ((m != zero) & (m < inverse)));
+    const V4 along = g[0] * dx + g[1] * dy + g[2] * dz;
+    derivative = derivative * v + product * along;
+    product *= v;
+  }
+  const V4 F = product - this->Blending;
+  for (int j = 0; j < count; ++j)
+  {
+    value[j] = F[j];
+    slope[j] = derivative[j];
+    ok[j] = inRange[j] != 0 && std::isfinite(value[j]) && std::isfinite(slope[j]);
   }
 }
 

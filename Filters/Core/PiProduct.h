@@ -96,6 +96,18 @@ public:
   static constexpr int MaxVertices = 4;
   void EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
     double* gradientNorm, int* nearest) const;
+  /// Every factor (at most MaxVertices·8 of them) is a quadric or a quartic in the
+  /// squares in a diagonal frame (spheres, ellipsoids, axis-aligned cylinders, tori,
+  /// superquadrics of exponent 4, centred expressions): EvaluateOnSegments applies.
+  bool HasStarFactorsOnly() const { return this->StarFactorsOnly; }
+  /// Where HasStarFactorsOnly(): F and dF/ds = ∇F·d at the points a[j] + s[j]·d[j],
+  /// j < count (up to MaxVertices; the mesher's Newton steps along grid edges, d the
+  /// edge), from the factors' values and gradients, four points per vector
+  /// instruction. ok[j] is false (as for EvaluateOnAxisWithSlope) where a factor's
+  /// value is beyond 2^min(256, 1000 / factors) or non-zero below its inverse, where F
+  /// or the slope is not finite, or where a local coordinate reaches 1e30.
+  void EvaluateOnSegments(int count, const double (*a)[3], const double (*d)[3],
+    const double* s, double* value, double* slope, bool* ok) const;
   /// EvaluateVertex and the values of F at the six points p ± probe·e_a (as mantissa·
   /// 2^exponent, ordered as Polynomial3::EvaluateStar: −x, +x, −y, +y, −z, +z) in one
   /// pass over the factors, each factor's terms read once (PolynomialFactor::
@@ -257,6 +269,7 @@ private:
   // superquadrics about their centre, centred expressions): EvaluateVertices evaluates
   // it, like the StarQuadric ones, at four points per instruction.
   std::vector<unsigned char> StarEvenQuartic;
+  bool StarFactorsOnly = false; // (HasStarFactorsOnly)
   // When every factor is a quadric of degree 2 in a diagonal frame (spheres, ellipsoids,
   // axis-aligned cylinders: the commonest products) and there are at most
   // MaxPlainVertex of them: their frames and coefficients as 16 rows (A00 A11 A22 B0 B1

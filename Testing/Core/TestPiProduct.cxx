@@ -1337,6 +1337,93 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
     { { 0.5, 0.5, 0.0 }, { 2e30, 0.0, 1.0 }, { 1.25, 0.0, 0.0 } }, "far point");
 }
 
+// EvaluateOnSegments (the mesher's Newton steps along grid edges, four at a time): F at
+// a + s·d is the product of the factors' values minus r, in factor order (the same bits
+// as multiplying EvaluateWithGradient's values), its slope is ∇F·d; ok is false where
+// the plain product cannot be used or a point is far; and it applies only to products
+// of axis-aligned quadrics and quartics in the squares.
+TEST(ProductKernel, SegmentEvaluationGivesFAndItsSlopeAlongTheEdge)
+{
+  PrimitiveSpec torus;
+  torus.Type = PrimitiveType::Torus;
+  torus.MajorRadius = 1.0;
+  torus.MinorRadius = 0.25;
+  torus.Center[0] = 0.3;
+  PrimitiveSpec ellipsoid;
+  ellipsoid.Type = PrimitiveType::Ellipsoid;
+  ellipsoid.Radii[0] = 1.5;
+  ellipsoid.Radii[1] = 0.7;
+  ellipsoid.Radii[2] = 0.9;
+  PrimitiveSpec cup;
+  cup.Type = PrimitiveType::Polynomial;
+  cup.Expression = "((z+1)^2+10*x^2+10*y^2+19)^2-800*(x^2+y^2)";
+  const double o[3] = { 0.2, -0.1, 0.4 };
+  const std::vector<Factor> factors = { FromSpec(torus), FromSpec(ellipsoid), FromSpec(cup),
+    Sphere(o, 0.8) };
+  const double r = 0.3;
+  const ProductKernel k(factors, r);
+  ASSERT_TRUE(k.HasStarFactorsOnly());
+  Random rng(47);
+  for (int trial = 0; trial < 100; ++trial)
+  {
+    const int count = 1 + trial % 4;
+    double a[4][3], d[4][3], s[4], value[4], slope[4];
+    bool ok[4];
+    for (int j = 0; j < count; ++j)
+    {
+      const Point p = rng.InBox(-2, 2);
+      std::copy(p.begin(), p.end(), a[j]);
+      for (int c = 0; c < 3; ++c)
+        d[j][c] = 0.0;
+      d[j][rng.Integer(0, 2)] = rng.Uniform(0.01, 0.1);
+      s[j] = rng.Uniform(0, 1);
+    }
+    k.EvaluateOnSegments(count, a, d, s, value, slope, ok);
+    for (int j = 0; j < count; ++j)
+    {
+      const double x[3] = { a[j][0] + s[j] * d[j][0], a[j][1] + s[j] * d[j][1],
+        a[j][2] + s[j] * d[j][2] };
+      double P = 1.0;
+      for (const Factor& f : factors)
+      {
+        double g[3];
+        P *= f.EvaluateWithGradient(x, g);
+      }
+      const Direct direct = DirectEvaluation(factors, r, x);
+      ASSERT_TRUE(ok[j]) << "trial " << trial;
+      EXPECT_EQ(value[j], P - r) << "trial " << trial;
+      const double along =
+        direct.G[0] * d[j][0] + direct.G[1] * d[j][1] + direct.G[2] * d[j][2];
+      const double length = std::fabs(d[j][0]) + std::fabs(d[j][1]) + std::fabs(d[j][2]);
+      EXPECT_NEAR(slope[j], along, direct.GradientTolerance * length) << "trial " << trial;
+    }
+  }
+  // A far point (the quartic's coordinates beyond 1e30) and a product beyond the plain
+  // range: not ok, the caller's general path.
+  double a[2][3] = { { 0.5, 0.5, 0.0 }, { 2e30, 0.0, 0.0 } }, d[2][3] = { { 0.1, 0, 0 }, { 0.1, 0, 0 } };
+  double s[2] = { 0.5, 0.5 }, value[2], slope[2];
+  bool ok[2];
+  k.EvaluateOnSegments(2, a, d, s, value, slope, ok);
+  EXPECT_FALSE(ok[0] && ok[1]);
+  std::vector<Factor> many;
+  for (int i = 0; i < 30; ++i)
+  {
+    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
+    many.push_back(Sphere(c, 1.0));
+  }
+  const ProductKernel huge(many, 1.0);
+  ASSERT_TRUE(huge.HasStarFactorsOnly());
+  huge.EvaluateOnSegments(1, a, d, s, value, slope, ok);
+  EXPECT_FALSE(ok[0]);
+  // A rotated torus or a generic factor: not applicable.
+  PrimitiveSpec tilted = torus;
+  tilted.Orient = Orientation::Rotation;
+  tilted.RotationAxis[0] = 1.0;
+  tilted.RotationAngle = 30.0;
+  EXPECT_FALSE(ProductKernel({ FromSpec(tilted), Sphere(o, 1.0) }, r).HasStarFactorsOnly());
+  EXPECT_FALSE(ProductKernel({ FromSpec(torus), Wave() }, r).HasStarFactorsOnly());
+}
+
 // pisurf::Frexp and pisurf::Ldexp replace std::frexp and std::ldexp in the products and
 // the ray roots: they must give the same bits for every double, the special ones too.
 TEST(Float, FrexpAndLdexpHaveTheLibraryBits)
