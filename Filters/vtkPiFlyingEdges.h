@@ -42,17 +42,23 @@
  *    blocks only, from the same row bit masks of the signs: the crossing edges of a row
  *    are its mask XOR its neighbour's, the cells with both signs a few AND/OR of four
  *    rows. Each crossing edge gets exactly one vertex, numbered by the block that owns
- *    its lower end; a triangle finds a neighbour's vertex by counting the crossings
- *    before its edge in the owner's row (no search).
+ *    its lower end; a triangle finds its own block's vertices in a table the block
+ *    fills as it numbers them, a neighbour's by counting the crossings before its edge
+ *    in the owner's row (no search).
  * 6. Vertices: with ProjectVertices (default on) each moves to the exact root of F on
  *    its grid edge. The edge's end values have opposite signs (the sign of F is exact),
- *    so the root is bracketed. Where every factor is a polynomial in an axis-aligned
- *    frame, the factors are restricted to the edge's line once (one pass over their
- *    terms; an x edge takes its row's restriction from pass 2, where every polynomial
- *    factor in any frame is restricted) and Newton's method on the restricted product,
- *    kept in the bracket, finds the root in two or three steps (vertices go four at a
- *    time: their Newton steps, then their normals and nearest factors, run side by side,
- *    so that each vertex's chain of dependent operations overlaps the others'); where
+ *    so the root is bracketed. Newton's method, kept in the bracket, finds the root in
+ *    two or three steps, on four vertices at a time. Where every factor is a quadric
+ *    or a quartic in the squares in an axis-aligned frame (spheres, ellipsoids,
+ *    cylinders, tori, superquadrics of exponent 4, centred expressions: see
+ *    pisurf::ProductKernel::HasStarFactorsOnly), each step evaluates the factors and
+ *    their gradients at the four vertices' points at once, as the lanes of vector
+ *    instructions, and the normals and nearest factors follow the same way. For other
+ *    polynomials in an axis-aligned frame, the factors are restricted to the edge's
+ *    line once (one pass over their terms; an x edge takes its row's restriction from
+ *    pass 2, where every polynomial factor in any frame is restricted) and the four
+ *    vertices' Newton steps on the restricted products run side by side, so that each
+ *    vertex's chain of dependent operations overlaps the others'. Where
  *    the plain product would leave the double range (thousands of factors, F beyond
  *    1e200), Newton steps on F with the product kept as a logarithm,
  *    (1 − r/P) / Σ f_i'/f_i, safeguarded by bisection; otherwise
