@@ -92,11 +92,9 @@ Factor Wave()
   });
 }
 
-/// A random primitive of any type, randomly placed.
-Factor RandomPrimitive(Random& rng)
+/// Random sizes for every type's parameters (radii, torus radii, exponent 4, cone angle).
+void RandomSizes(Random& rng, PrimitiveSpec& s)
 {
-  PrimitiveSpec s;
-  s.Type = static_cast<PrimitiveType>(rng.Integer(0, 11));
   s.Radius = rng.Uniform(0.5, 1.5);
   for (double& r : s.Radii)
     r = rng.Uniform(0.5, 1.5);
@@ -104,6 +102,14 @@ Factor RandomPrimitive(Random& rng)
   s.MinorRadius = rng.Uniform(0.2, 0.5);
   s.Exponent = 4;
   s.Angle = rng.Uniform(10, 70);
+}
+
+/// A random primitive of any type, randomly placed.
+Factor RandomPrimitive(Random& rng)
+{
+  PrimitiveSpec s;
+  s.Type = static_cast<PrimitiveType>(rng.Integer(0, 11));
+  RandomSizes(rng, s);
   s.Expression = "x*y - z^2 + 0.25*x^3 - 1";
   for (int i = 0; i < 3; ++i)
   {
@@ -1271,13 +1277,7 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
     PrimitiveSpec s;
     const int types[] = { 0, 1, 2, 3, 5, 6, 9, 11 };
     s.Type = static_cast<PrimitiveType>(types[rng.Integer(0, 7)]);
-    s.Radius = rng.Uniform(0.5, 1.5);
-    for (double& r : s.Radii)
-      r = rng.Uniform(0.5, 1.5);
-    s.MajorRadius = rng.Uniform(1.0, 1.5);
-    s.MinorRadius = rng.Uniform(0.2, 0.5);
-    s.Exponent = 4;
-    s.Angle = rng.Uniform(10, 70);
+    RandomSizes(rng, s);
     // (centred about (0.7, −0.2, 0.4): a quartic in the squares there)
     s.Expression = "((x-0.7)^2 + (y+0.2)^2 + 2*(z-0.4)^2 + 0.3)^2 - 3*((x-0.7)^2 + (y+0.2)^2)";
     for (int i = 0; i < 3; ++i)
