@@ -2450,60 +2450,46 @@ struct VertexAttributes
   // evaluations of all unfinished lanes, then their steps.
   void NewtonLanes(Lane* lanes, int count) const
   {
+    // Star factors only: every lane at once, as vector lanes (ProductKernel::
+    // EvaluateOnSegments), the finished ones too (their results unused).
     const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
-    if (kernel->HasStarFactorsOnly())
+    const bool star = kernel->HasStarFactorsOnly();
+    double a[MaxLanes][3], d[MaxLanes][3];
+    for (int k = 0; star && k < count; ++k)
     {
-      // Every lane at once, as vector lanes (ProductKernel::EvaluateOnSegments), the
-      // finished ones too (their results unused) until all have finished.
-      double a[MaxLanes][3], d[MaxLanes][3];
-      for (int k = 0; k < count; ++k)
+      for (int c = 0; c < 3; ++c)
       {
-        for (int c = 0; c < 3; ++c)
-        {
-          a[k][c] = lanes[k].E.A[c];
-          d[k][c] = lanes[k].E.B[c] - lanes[k].E.A[c];
-        }
-      }
-      for (;;)
-      {
-        double s[MaxLanes], v[MaxLanes], slope[MaxLanes];
-        bool ok[MaxLanes];
-        bool any = false;
-        for (int k = 0; k < count; ++k)
-        {
-          s[k] = lanes[k].Newton.S;
-          any = any || !lanes[k].Newton.Done;
-        }
-        if (!any)
-        {
-          return;
-        }
-        kernel->EvaluateOnSegments(count, a, d, s, v, slope, ok);
-        for (int k = 0; k < count; ++k)
-        {
-          if (!lanes[k].Newton.Done)
-          {
-            lanes[k].Newton.Step(ok[k], v[k], slope[k]);
-          }
-        }
+        a[k][c] = lanes[k].E.A[c];
+        d[k][c] = lanes[k].E.B[c] - lanes[k].E.A[c];
       }
     }
     for (;;)
     {
-      double v[MaxLanes], slope[MaxLanes];
+      double s[MaxLanes], v[MaxLanes], slope[MaxLanes];
       bool ok[MaxLanes];
       bool any = false;
       for (int k = 0; k < count; ++k)
       {
-        if (!lanes[k].Newton.Done)
-        {
-          ok[k] = this->EvaluateLane(lanes[k], v[k], slope[k]);
-          any = true;
-        }
+        s[k] = lanes[k].Newton.S;
+        any = any || !lanes[k].Newton.Done;
       }
       if (!any)
       {
         return;
+      }
+      if (star)
+      {
+        kernel->EvaluateOnSegments(count, a, d, s, v, slope, ok);
+      }
+      else
+      {
+        for (int k = 0; k < count; ++k)
+        {
+          if (!lanes[k].Newton.Done)
+          {
+            ok[k] = this->EvaluateLane(lanes[k], v[k], slope[k]);
+          }
+        }
       }
       for (int k = 0; k < count; ++k)
       {

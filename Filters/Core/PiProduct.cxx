@@ -109,6 +109,8 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
   this->StarQuadric.assign(this->Factors.size(), 0);
   this->StarEvenQuartic.assign(this->Factors.size(), 0);
+  this->StarFactorsOnly = this->AllPolynomial && !this->Factors.empty() &&
+    this->Factors.size() <= MaxPlainVertex;
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     Factor& f = this->Factors[k];
@@ -119,14 +121,9 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
       // (PrepareIntervals sets Diagonal)
       this->StarQuadric[k] = f.Polynomial.Poly.IsQuadric() && f.Polynomial.Diagonal;
       this->StarEvenQuartic[k] = f.Polynomial.Poly.IsEvenQuartic() && f.Polynomial.Diagonal;
+      this->StarFactorsOnly =
+        this->StarFactorsOnly && (this->StarQuadric[k] || this->StarEvenQuartic[k]);
     }
-  }
-  this->StarFactorsOnly = this->AllPolynomial && !this->Factors.empty() &&
-    this->Factors.size() <= MaxPlainVertex;
-  for (size_t k = 0; k < this->Factors.size(); ++k)
-  {
-    this->StarFactorsOnly =
-      this->StarFactorsOnly && (this->StarQuadric[k] || this->StarEvenQuartic[k]);
   }
   this->PackQuadrics();
 }
@@ -140,6 +137,8 @@ typedef long long I4 __attribute__((vector_size(32)));
 typedef double V4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
 }
 #define PISURF_LOAD4(p) (*reinterpret_cast<const V4Unaligned*>(p))
+// |v| of each lane (std::fabs: the sign bit cleared).
+#define PISURF_ABS4(v) ((V4)((I4)(v) & (I4{ 0, 0, 0, 0 } + 0x7fffffffffffffffLL)))
 #define PISURF_STORE4(p, v) (*reinterpret_cast<V4Unaligned*>(p) = (v))
 
 namespace
@@ -529,7 +528,6 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
   const double r = this->Blending;
   const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
   const V4 boundV = zero + bound;
-  const I4 magnitudeMask = (I4){ 0, 0, 0, 0 } + 0x7fffffffffffffffLL;
   // The last group's lanes past the row repeat its last point (so they change neither
   // the group's range test nor anything written).
   for (int start = 0; start < n; start += Group)
@@ -564,7 +562,7 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       for (int v = 0; v < Vectors; ++v)
       {
         product[v] *= acc[v];
-        const V4 m = (V4)((I4)acc[v] & magnitudeMask);
+        const V4 m = PISURF_ABS4(acc[v]);
         // As std::max(hi, a) and std::min(lo, a): a NaN leaves them; a factor exactly 0
         // makes lo 0, so its points take EvaluateRestricted (rare, and the same bits).
         hi = hi < m ? m : hi;
@@ -589,7 +587,7 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       for (int v = 0; v < Vectors; ++v)
       {
         result[v] = product[v] - r;
-        const V4 m = (V4)((I4)result[v] & magnitudeMask);
+        const V4 m = PISURF_ABS4(result[v]);
         largest = m <= largest ? largest : m; // a NaN makes it NaN
       }
       bool finite = true;
@@ -834,6 +832,19 @@ struct PlainTest
   }
 };
 
+// The coordinates of up to four points as lanes: xyz[a][l] = p[l][a] (point 0 repeated
+// in the lanes from `count` on).
+__attribute__((always_inline)) static inline void Lanes(const double (*p)[3], int count, V4* xyz)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int l = 0; l < 4; ++l)
+    {
+      xyz[a][l] = p[l < count ? l : 0][a];
+    }
+  }
+}
+
 // v[i] = {c[i], c[i], c[i], c[i]} for i < n.
 __attribute__((always_inline)) static inline void Splat(const double* c, int n, V4* v)
 {
@@ -844,17 +855,18 @@ __attribute__((always_inline)) static inline void Splat(const double* c, int n, 
 }
 
 // A quadric (quartic false) or a quartic in the squares (true) in the diagonal frame of
-// pf at the four points (x, y, z) (world): its value v and world gradient g, with
+// pf at the four points p (world coordinates as lanes, see Lanes): its value v and world
+// gradient g, with
 // PolynomialFactor::EvaluateWithGradient's operations (ToLocalDiagonal, the local value
 // and gradient as pisurf::QuadricWithGradient or Polynomial3::EvaluateWithGradient's
 // quadric of the squares, A's diagonal times that): the same bits. False (nothing
 // written) where a quartic's local coordinate reaches 1e30 at some lane (Polynomial3
 // then takes its term-wise path).
-__attribute__((always_inline)) static inline bool StarFactorAt(const PolynomialFactor& pf,
-  bool quartic, const V4& px, const V4& py, const V4& pz, V4& v, V4* g)
+__attribute__((always_inline)) static inline bool StarFactorAt(
+  const PolynomialFactor& pf, bool quartic, const V4* p, V4& v, V4* g)
 {
-  const V4 x = pf.A[0][0] * px + pf.B[0], y = pf.A[1][1] * py + pf.B[1],
-           z = pf.A[2][2] * pz + pf.B[2];
+  const V4 x = pf.A[0][0] * p[0] + pf.B[0], y = pf.A[1][1] * p[1] + pf.B[1],
+           z = pf.A[2][2] * p[2] + pf.B[2];
   V4 gl[3];
   V4 q[10] = {};
   if (!quartic)
@@ -897,9 +909,8 @@ struct PlainTest4
   V4 SmallProduct = V4{ 1, 1, 1, 1 }, BigProduct = V4{ 1, 1, 1, 1 };
   void Add(const V4& f, const V4* g)
   {
-    const I4 magnitude = I4{ 0, 0, 0, 0 } + 0x7fffffffffffffffLL; // (std::fabs)
-    const V4 a = (V4)((I4)f & magnitude), g0 = (V4)((I4)g[0] & magnitude),
-             g1 = (V4)((I4)g[1] & magnitude), g2 = (V4)((I4)g[2] & magnitude);
+    const V4 a = PISURF_ABS4(f), g0 = PISURF_ABS4(g[0]), g1 = PISURF_ABS4(g[1]),
+             g2 = PISURF_ABS4(g[2]);
     const V4 zero = V4{ 0, 0, 0, 0 }, one = V4{ 1, 1, 1, 1 }, big = zero + Big;
     this->Finite = this->Finite & (a > zero) & (a <= big) & (g0 <= big) & (g1 <= big) & (g2 <= big);
     // std::min(x, y) is y < x ? y : x, std::max(x, y) is x < y ? y : x (NaN included)
@@ -1023,14 +1034,8 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
   // quadrics and quartics in the squares in diagonal frames: each evaluated at the four
   // points at once, with the scalar path's operations in its order (the same bits).
   static_assert(MaxVertices == 4, "the lanes of V4");
-  V4 px, py, pz;
-  for (int l = 0; l < 4; ++l)
-  {
-    const int j = l < count ? l : 0;
-    px[l] = p[j][0];
-    py[l] = p[j][1];
-    pz[l] = p[j][2];
-  }
+  V4 x[3] = {};
+  Lanes(p, count, x);
   // Each factor's values and gradients at the lanes, tested lane by lane (PlainTest4).
   V4 fv[MaxPlainVertex], gv[MaxPlainVertex][3];
   PlainTest4 plain;
@@ -1038,7 +1043,7 @@ void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*n
   {
     const PolynomialFactor& pf = this->Factors[k].Polynomial;
     const bool done = (this->StarQuadric[k] || this->StarEvenQuartic[k]) &&
-      StarFactorAt(pf, this->StarEvenQuartic[k] != 0, px, py, pz, fv[k], gv[k]);
+      StarFactorAt(pf, this->StarEvenQuartic[k] != 0, x, fv[k], gv[k]);
     if (!done)
     {
       for (int l = 0; l < 4; ++l)
@@ -1086,19 +1091,18 @@ void ProductKernel::EvaluateOnSegments(int count, const double (*a)[3], const do
   // The points as lanes (the first repeated where there are fewer than four), each
   // factor's value and gradient there (StarFactorAt), its slope ∇f·d, multiplied into
   // F and dF/ds by the product rule (MultiplyWithSlope's bound test and operations).
-  V4 px, py, pz, dx, dy, dz;
-  for (int l = 0; l < 4; ++l)
+  double at[MaxVertices][3];
+  for (int j = 0; j < count; ++j)
   {
-    const int j = l < count ? l : 0;
-    dx[l] = d[j][0];
-    dy[l] = d[j][1];
-    dz[l] = d[j][2];
-    px[l] = a[j][0] + s[j] * d[j][0];
-    py[l] = a[j][1] + s[j] * d[j][1];
-    pz[l] = a[j][2] + s[j] * d[j][2];
+    for (int c = 0; c < 3; ++c)
+    {
+      at[j][c] = a[j][c] + s[j] * d[j][c];
+    }
   }
+  V4 x[3] = {}, dx[3] = {};
+  Lanes(at, count, x);
+  Lanes(d, count, dx);
   const V4 zero = V4{ 0, 0, 0, 0 };
-  const I4 magnitude = I4{ 0, 0, 0, 0 } + 0x7fffffffffffffffLL;
   const V4 bound = zero + this->PlainBound, inverse = zero + 1.0 / this->PlainBound;
   V4 product = zero + 1.0, derivative = zero;
   I4 inRange = I4{ 0, 0, 0, 0 } - 1;
@@ -1106,8 +1110,7 @@ void ProductKernel::EvaluateOnSegments(int count, const double (*a)[3], const do
   for (size_t k = 0; k < factors; ++k)
   {
     V4 v, g[3];
-    if (!StarFactorAt(
-          this->Factors[k].Polynomial, this->StarEvenQuartic[k] != 0, px, py, pz, v, g))
+    if (!StarFactorAt(this->Factors[k].Polynomial, this->StarEvenQuartic[k] != 0, x, v, g))
     {
       for (int j = 0; j < count; ++j)
       {
@@ -1115,9 +1118,9 @@ void ProductKernel::EvaluateOnSegments(int count, const double (*a)[3], const do
       }
       return;
     }
-    const V4 m = (V4)((I4)v & magnitude);
+    const V4 m = PISURF_ABS4(v);
     inRange = inRange & ~((m > bound) | ((m != zero) & (m < inverse)));
-    const V4 along = g[0] * dx + g[1] * dy + g[2] * dz;
+    const V4 along = g[0] * dx[0] + g[1] * dx[1] + g[2] * dx[2];
     derivative = derivative * v + product * along;
     product *= v;
   }
