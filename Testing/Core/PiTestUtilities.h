@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <string>
@@ -59,6 +61,15 @@ public:
 private:
   std::mt19937 Engine;
 };
+
+/// a and b have the same bits (so 0 and −0 differ, and so do NaNs of other payloads).
+inline bool SameBits(double a, double b)
+{
+  std::uint64_t x, y;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  return x == y;
+}
 
 /// |a - b| <= tol * max(1, |a|, |b|): relative for large values, absolute near 0.
 inline ::testing::AssertionResult Near(double a, double b, double tol)

@@ -379,7 +379,6 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
 TEST(ProductKernel, RowEvaluationHasTheBitsOfPointEvaluation)
 {
   Random rng(45);
-  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   auto check = [&](const ProductKernel& k, const double o[3], const double d[3], int count,
                  const char* what) {
     std::vector<double> coefficients(k.GetLineCoefficientCount());
@@ -392,7 +391,7 @@ TEST(ProductKernel, RowEvaluationHasTheBitsOfPointEvaluation)
     for (int i = 0; i < count; ++i)
     {
       const double p[3] = { start[0] + i * d[0], start[1] + i * d[1], start[2] + i * d[2] };
-      differing += !same(row[i], k.EvaluateRestricted(coefficients.data(), t0 + i, p));
+      differing += !SameBits(row[i], k.EvaluateRestricted(coefficients.data(), t0 + i, p));
     }
     EXPECT_EQ(differing, 0) << what << ": points whose bits differ";
   };
@@ -1248,12 +1247,6 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
 // is exactly 0, where the plain product overflows (the scaled path) and far points.
 TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
 {
-  auto same = [](double a, double b) {
-    std::uint64_t x, y;
-    std::memcpy(&x, &a, sizeof x);
-    std::memcpy(&y, &b, sizeof y);
-    return x == y;
-  };
   auto check = [&](const ProductKernel& k, const std::vector<Point>& points, const char* what) {
     const int count = static_cast<int>(points.size());
     double p[ProductKernel::MaxVertices][3], n[ProductKernel::MaxVertices][3];
@@ -1267,9 +1260,9 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
       double n1[3], g1;
       int near1;
       k.EvaluateVertex(p[j], n1, g1, near1);
-      EXPECT_TRUE(same(g[j], g1)) << what << " point " << j << ": " << g[j] << " vs " << g1;
+      EXPECT_TRUE(SameBits(g[j], g1)) << what << " point " << j << ": " << g[j] << " vs " << g1;
       for (int c = 0; c < 3; ++c)
-        EXPECT_TRUE(same(n[j][c], n1[c])) << what << " point " << j << " normal " << c;
+        EXPECT_TRUE(SameBits(n[j][c], n1[c])) << what << " point " << j << " normal " << c;
       EXPECT_EQ(nearest[j], near1) << what << " point " << j;
     }
   };
@@ -1428,12 +1421,7 @@ TEST(ProductKernel, SegmentEvaluationGivesFAndItsSlopeAlongTheEdge)
 // the ray roots: they must give the same bits for every double, the special ones too.
 TEST(Float, FrexpAndLdexpHaveTheLibraryBits)
 {
-  auto same = [](double a, double b) {
-    std::uint64_t x, y;
-    std::memcpy(&x, &a, sizeof x);
-    std::memcpy(&y, &b, sizeof y);
-    return x == y || (std::isnan(a) && std::isnan(b));
-  };
+  auto same = [](double a, double b) { return SameBits(a, b) || (std::isnan(a) && std::isnan(b)); };
   std::vector<double> values = { 0.0, -0.0, 1.0, -1.0, 0.5, 3.0, 1e-300, -1e300,
     std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
     std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(),
