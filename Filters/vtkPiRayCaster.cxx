@@ -1204,29 +1204,41 @@ int vtkPiRayCaster::RequestData(
   PiFor(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end; ++r)
     {
-      vtkIdType k = rowOffsets[r];
-      for (const Hit& hit : rows[r])
+      const std::vector<Hit>& row = rows[r];
+      // Four hits at a time (RayCaster::Attributes evaluates them side by side).
+      constexpr int Group = pisurf::ProductKernel::MaxVertices;
+      for (size_t first = 0; first < row.size(); first += Group)
       {
-        double nrm[3], g;
-        int nearest;
-        // Singular: F grows faster than linearly away from the hit.
-        const bool isSingular =
-          caster.Attributes(hit.P, probe, this->SingularTolerance, nrm, g, nearest);
-        singularOut[k] = isSingular ? 1 : 0;
-        for (int c = 0; c < 3; ++c)
+        const int count = static_cast<int>(std::min<size_t>(Group, row.size() - first));
+        double p[Group][3], nrm[Group][3], g[Group];
+        int nearest[Group];
+        bool isSingular[Group];
+        for (int j = 0; j < count; ++j)
         {
-          xyz[3 * k + c] = hit.P[c];
-          nrmOut[3 * k + c] = static_cast<float>(nrm[c]);
+          std::copy(row[first + j].P, row[first + j].P + 3, p[j]);
         }
-        gradientOut[k] = g;
-        depthOut[k] = hit.T;
-        pixelOut[2 * k] = hit.I;
-        pixelOut[2 * k + 1] = hit.J;
-        viewOut[k] = hit.View;
-        hitOut[k] = hit.Index;
-        tangentOut[k] = hit.Tangent ? 1 : 0;
-        factorOut[k] = nearest;
-        ++k;
+        // Singular: F grows faster than linearly away from the hit.
+        caster.Attributes(
+          count, p, probe, this->SingularTolerance, nrm, g, nearest, isSingular);
+        for (int j = 0; j < count; ++j)
+        {
+          const Hit& hit = row[first + j];
+          const vtkIdType k = rowOffsets[r] + static_cast<vtkIdType>(first) + j;
+          singularOut[k] = isSingular[j] ? 1 : 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            xyz[3 * k + c] = hit.P[c];
+            nrmOut[3 * k + c] = static_cast<float>(nrm[j][c]);
+          }
+          gradientOut[k] = g[j];
+          depthOut[k] = hit.T;
+          pixelOut[2 * k] = hit.I;
+          pixelOut[2 * k + 1] = hit.J;
+          viewOut[k] = hit.View;
+          hitOut[k] = hit.Index;
+          tangentOut[k] = hit.Tangent ? 1 : 0;
+          factorOut[k] = nearest[j];
+        }
       }
     }
   });

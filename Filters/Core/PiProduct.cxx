@@ -1364,15 +1364,14 @@ ProductKernel::ProbeBounds ProductKernel::PrepareProbes(const double box[6], dou
   return bounds;
 }
 
-bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds,
-  double tolerance, double normal[3], double& gradientNorm, int& nearest,
-  double* logGradientNorm) const
+// EvaluateVertexIfRegular's slack for p: the bounds' row of the cell of their box that
+// holds p (null where p is outside the box, or the bounds are not for these factors).
+static const double* ProbeSlack(
+  const ProductKernel::ProbeBounds& bounds, size_t factors, const double p[3])
 {
-  const size_t count = this->Factors.size();
-  if (!this->AllPolynomial || count == 0 || count > MaxPlainVertex ||
-    bounds.Slack.size() != 3 * count * bounds.Cells[0] * bounds.Cells[1] * bounds.Cells[2])
+  if (bounds.Slack.size() != 3 * factors * bounds.Cells[0] * bounds.Cells[1] * bounds.Cells[2])
   {
-    return false;
+    return nullptr;
   }
   size_t cell = 0;
   for (int a = 3; a-- > 0;)
@@ -1380,13 +1379,49 @@ bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds
     const double lo = bounds.Box[2 * a], hi = bounds.Box[2 * a + 1];
     if (!(p[a] >= lo && p[a] <= hi))
     {
-      return false;
+      return nullptr;
     }
     const int n = bounds.Cells[a];
     const int c = hi > lo ? static_cast<int>((p[a] - lo) / (hi - lo) * n) : 0;
     cell = cell * n + static_cast<size_t>(std::max(0, std::min(n - 1, c)));
   }
-  const double* slack = bounds.Slack.data() + cell * 3 * count;
+  return bounds.Slack.data() + cell * 3 * factors;
+}
+
+// EvaluateVertexIfRegular's verdict from the product's value, the bounds' sums t (the
+// largest change of a probe's product along each axis) and grown (the largest product
+// of the moved factors) and |∇F|.
+static bool RegularFromBounds(double product, const double t[3], const double grown[3],
+  size_t count, double blending, double gradientNorm, double h, double tolerance)
+{
+  const double absProduct = std::fabs(product);
+  const double largest = std::max({ 0.0, t[0], t[1], t[2] });
+  const double magnitude = std::max({ 0.0, grown[0], grown[1], grown[2] });
+  // |F| at a probe, as computed there: at most |F(p)| (with its rounding) + T, plus the
+  // rounding of the probe's own product and subtraction; with a relative margin.
+  const double r = std::fabs(blending);
+  const double unit = std::numeric_limits<double>::epsilon();
+  const double rounding = 4.0 * (static_cast<double>(count) + 2.0) * unit;
+  const double F = product - blending;
+  const double U = (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) *
+    (1.0 + 1e-10);
+  return std::isfinite(U) && std::isnormal(gradientNorm) && gradientNorm * h > tolerance * U;
+}
+
+bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds,
+  double tolerance, double normal[3], double& gradientNorm, int& nearest,
+  double* logGradientNorm) const
+{
+  const size_t count = this->Factors.size();
+  if (!this->AllPolynomial || count == 0 || count > MaxPlainVertex)
+  {
+    return false;
+  }
+  const double* slack = ProbeSlack(bounds, count, p);
+  if (!slack)
+  {
+    return false;
+  }
   double f[MaxPlainVertex], g[MaxPlainVertex][3];
   if (!this->PlainVertexFactors(p, f, g))
   {
@@ -1416,19 +1451,84 @@ bool ProductKernel::EvaluateVertexIfRegular(const double p[3], const ProbeBounds
     q *= af;
     product *= f[k];
   }
-  const double absProduct = std::fabs(product);
-  const double largest = std::max({ 0.0, t[0], t[1], t[2] });
-  const double magnitude = std::max({ 0.0, grown[0], grown[1], grown[2] });
-  // |F| at a probe, as computed there: at most |F(p)| (with its rounding) + T, plus the
-  // rounding of the probe's own product and subtraction; with a relative margin.
-  const double r = std::fabs(this->Blending);
-  const double unit = std::numeric_limits<double>::epsilon();
-  const double rounding = 4.0 * (static_cast<double>(count) + 2.0) * unit;
-  const double F = product - this->Blending;
-  const double U = (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) *
-    (1.0 + 1e-10);
   this->FinishPlainVertex(f, g, normal, gradientNorm, nearest, logGradientNorm);
-  return std::isfinite(U) && std::isnormal(gradientNorm) && gradientNorm * h > tolerance * U;
+  return RegularFromBounds(product, t, grown, count, this->Blending, gradientNorm, h, tolerance);
+}
+
+PISURF_AVX2_CLONES
+void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
+  const ProbeBounds& bounds, double tolerance, double (*normal)[3], double* gradientNorm,
+  int* nearest, bool* regular) const
+{
+  const size_t factors = this->Factors.size();
+  auto onePointAtATime = [&]() {
+    for (int j = 0; j < count; ++j)
+    {
+      regular[j] = this->EvaluateVertexIfRegular(
+        p[j], bounds, tolerance, normal[j], gradientNorm[j], nearest[j]);
+    }
+  };
+  if (!this->StarFactorsOnly || count > MaxVertices || factors > MaxPlainVertex)
+  {
+    onePointAtATime();
+    return;
+  }
+  // Each point's slack row (a point outside the box is not regular; its lane computes
+  // with zero slack, unused).
+  static_assert(MaxVertices == 4, "the lanes of V4");
+  const double* slack[MaxVertices];
+  static const double zeros[3 * MaxPlainVertex] = {};
+  bool any = false;
+  for (int l = 0; l < MaxVertices; ++l)
+  {
+    slack[l] = l < count ? ProbeSlack(bounds, factors, p[l]) : nullptr;
+    any = any || slack[l];
+  }
+  if (!any)
+  {
+    std::fill(regular, regular + count, false);
+    return;
+  }
+  // The factors at the four points (as EvaluateVertices), PlainVertexFactors' test, and
+  // the bounds' sums of EvaluateVertexIfRegular, lane by lane with its operations.
+  V4 x[3] = {};
+  Lanes(p, count, x);
+  V4 fv[MaxPlainVertex], gv[MaxPlainVertex][3];
+  PlainTest4 plain;
+  const V4 zero = V4{ 0, 0, 0, 0 }, one = zero + 1.0, h = zero + bounds.Probe;
+  V4 product = one, q = one, t[3] = { zero, zero, zero }, grown[3] = { one, one, one };
+  for (size_t k = 0; k < factors; ++k)
+  {
+    if (!StarFactorAt(this->Factors[k].Polynomial, this->StarEvenQuartic[k] != 0, x, fv[k], gv[k]))
+    {
+      onePointAtATime(); // (a quartic's local coordinate reaches 1e30)
+      return;
+    }
+    plain.Add(fv[k], gv[k]);
+    const V4 af = PISURF_ABS4(fv[k]);
+    for (int a = 0; a < 3; ++a)
+    {
+      V4 s;
+      for (int l = 0; l < 4; ++l)
+      {
+        s[l] = (slack[l] ? slack[l] : zeros)[3 * k + a];
+      }
+      const V4 delta = h * PISURF_ABS4(gv[k][a]) * (1.0 + 1e-12) + s;
+      t[a] = t[a] * (af + delta) + delta * q;
+      grown[a] *= af + delta;
+    }
+    q *= af;
+    product *= fv[k];
+  }
+  FinishPlainVertices(fv, gv, factors, count, normal, gradientNorm, nearest);
+  for (int j = 0; j < count; ++j)
+  {
+    const double tj[3] = { t[0][j], t[1][j], t[2][j] };
+    const double grownj[3] = { grown[0][j], grown[1][j], grown[2][j] };
+    regular[j] = slack[j] && plain.Plain(j) &&
+      RegularFromBounds(product[j], tj, grownj, factors, this->Blending, gradientNorm[j],
+        bounds.Probe, tolerance);
+  }
 }
 
 // F = m·2^e − r as mantissa·2^exponent, the end of EvaluateScaled.

@@ -147,6 +147,15 @@ public:
   bool EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds, double tolerance,
     double normal[3], double& gradientNorm, int& nearest,
     double* logGradientNorm = nullptr) const;
+  /// EvaluateVertexIfRegular at `count` points (up to MaxVertices): the same results,
+  /// bit for bit, regular[j] being its answer at p[j]. Where HasStarFactorsOnly(), the
+  /// factors, the plain-range test, the bound of the probes' |F| and the product rule
+  /// are evaluated at the four points at once, as the lanes of vector instructions
+  /// (EvaluateVertices' kernels), with the scalar operations in their order; else one
+  /// point at a time. (A ray's hits, four at a time: RayCaster::Attributes.)
+  void EvaluateVerticesIfRegular(int count, const double (*p)[3], const ProbeBounds& bounds,
+    double tolerance, double (*normal)[3], double* gradientNorm, int* nearest,
+    bool* regular) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.

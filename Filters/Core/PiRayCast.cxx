@@ -247,6 +247,40 @@ void RayCaster::PrepareProbes(const double box[6], double probe)
 bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
   double& gradientNorm, int& nearest) const
 {
+  if (!this->Molecule && probe == this->Probes.Probe && probe > 0 &&
+    this->Kernel->EvaluateVertexIfRegular(p, this->Probes, tolerance, normal, gradientNorm, nearest))
+  {
+    return false;
+  }
+  return this->ProbedAttributes(p, probe, tolerance, normal, gradientNorm, nearest);
+}
+
+void RayCaster::Attributes(int count, const double (*p)[3], double probe, double tolerance,
+  double (*normal)[3], double* gradientNorm, int* nearest, bool* singular) const
+{
+  if (this->Molecule || !(probe == this->Probes.Probe && probe > 0) ||
+    count > ProductKernel::MaxVertices || !this->Kernel->HasStarFactorsOnly())
+  {
+    for (int j = 0; j < count; ++j)
+    {
+      singular[j] = this->Attributes(p[j], probe, tolerance, normal[j], gradientNorm[j], nearest[j]);
+    }
+    return;
+  }
+  bool regular[ProductKernel::MaxVertices];
+  this->Kernel->EvaluateVerticesIfRegular(
+    count, p, this->Probes, tolerance, normal, gradientNorm, nearest, regular);
+  for (int j = 0; j < count; ++j)
+  {
+    // (a point not proven regular takes the probes)
+    singular[j] = !regular[j] &&
+      this->ProbedAttributes(p[j], probe, tolerance, normal[j], gradientNorm[j], nearest[j]);
+  }
+}
+
+bool RayCaster::ProbedAttributes(const double p[3], double probe, double tolerance,
+  double normal[3], double& gradientNorm, int& nearest) const
+{
   if (this->Molecule)
   {
     // The same test in logarithms: ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
@@ -265,11 +299,6 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
   }
   double logGradient, mantissa[6];
   long exponent[6];
-  if (probe == this->Probes.Probe && probe > 0 &&
-    this->Kernel->EvaluateVertexIfRegular(p, this->Probes, tolerance, normal, gradientNorm, nearest))
-  {
-    return false;
-  }
   this->Kernel->EvaluateVertexStar(
     p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
   return ProbesSayZeroGradient(gradientNorm, logGradient, probe, tolerance, mantissa, exponent);

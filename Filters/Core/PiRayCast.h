@@ -41,6 +41,11 @@ public:
   /// products whose |∇F| varies by orders of magnitude over the surface.
   bool Attributes(const double p[3], double probe, double tolerance, double normal[3],
     double& gradientNorm, int& nearest) const;
+  /// Attributes at `count` points (up to ProductKernel::MaxVertices), the same results:
+  /// singular[j] its answer at p[j]. With prepared probes, the points that the factors
+  /// prove regular take ProductKernel::EvaluateVerticesIfRegular, four at a time.
+  void Attributes(int count, const double (*p)[3], double probe, double tolerance,
+    double (*normal)[3], double* gradientNorm, int* nearest, bool* singular) const;
   /// Lets Attributes skip the six probes where the factors' values and gradients at p
   /// already prove the point regular (ProductKernel::EvaluateVertexIfRegular), for
   /// points in `box` and this probe length. The same answers, with EvaluateVertex's
@@ -60,6 +65,10 @@ public:
   size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
 
 private:
+  // Attributes without the shortcut: the six probes (or the molecule's test).
+  bool ProbedAttributes(const double p[3], double probe, double tolerance, double normal[3],
+    double& gradientNorm, int& nearest) const;
+
   const ProductKernel* Kernel = nullptr;
   const MoleculeField* Molecule = nullptr;
   ProductKernel::ProbeBounds Probes; // Probe 0: not prepared

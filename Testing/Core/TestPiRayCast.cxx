@@ -5,6 +5,7 @@
 #include "PiModel.h"
 #include "PiProduct.h"
 #include "PiRayCast.h"
+#include "PiTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,7 @@
 #include <vector>
 
 using namespace pisurf;
+using pisurf_test::SameBits;
 
 namespace
 {
@@ -75,6 +77,26 @@ std::vector<Loaded> GalleryModels()
     models.push_back(FromText(name, text.str()));
   }
   return models;
+}
+
+// The benchmark's 10 spheres (their centres in `centres` if asked).
+Loaded TenSpheres(std::vector<std::array<double, 3>>* centres = nullptr)
+{
+  std::ostringstream text;
+  text << "{\"pisurf\": 1, \"blending\": 0.5, \"bounds\": [-3.3, 3.3, -1.5, 1.5, -0.9, 1.8], "
+       << "\"primitives\": [";
+  for (int i = 0; i < 10; ++i)
+  {
+    const std::array<double, 3> c = { 1.2 * (i % 5) - 2.4, 1.2 * (i / 5) - 0.6, 0.1 * i };
+    if (centres)
+    {
+      centres->push_back(c);
+    }
+    text << (i ? ", " : "") << "{\"type\": \"sphere\", \"center\": [" << c[0] << ", " << c[1]
+         << ", " << c[2] << "], \"radius\": 0.8}";
+  }
+  text << "]}";
+  return FromText("10 spheres", text.str());
 }
 
 // |∇F|·h over the largest |F| of the six probes, as RayCaster::Attributes's test sees
@@ -200,19 +222,8 @@ TEST(RayCast, SkippedProbesNeverContradictTheProbes)
 TEST(RayCast, SkippedProbesCertifyTinyFactorsOfManySpheres)
 {
   std::mt19937 rng(11);
-  // The benchmark's 10 spheres.
-  std::ostringstream text;
-  text << "{\"pisurf\": 1, \"blending\": 0.5, \"bounds\": [-3.3, 3.3, -1.5, 1.5, -0.9, 1.8], "
-       << "\"primitives\": [";
   std::vector<std::array<double, 3>> centres;
-  for (int i = 0; i < 10; ++i)
-  {
-    centres.push_back({ 1.2 * (i % 5) - 2.4, 1.2 * (i / 5) - 0.6, 0.1 * i });
-    text << (i ? ", " : "") << "{\"type\": \"sphere\", \"center\": [" << centres[i][0] << ", "
-         << centres[i][1] << ", " << centres[i][2] << "], \"radius\": 0.8}";
-  }
-  text << "]}";
-  const Loaded model = FromText("10 spheres", text.str());
+  const Loaded model = TenSpheres(&centres);
   int certified = 0, refused = 0, tiny = 0;
   CheckSkippedProbes(model, rng, 4000, certified, refused, [&](const double* p) {
     double smallest = HUGE_VAL;
@@ -271,4 +282,108 @@ TEST(RayCast, PreparedProbesKeepTheSingularCurve)
     singular += s1 ? 1 : 0;
   }
   EXPECT_GT(singular, 0);
+}
+
+// RayCaster::Attributes at up to four points at once (the ray caster's hits, side by
+// side; ProductKernel::EvaluateVerticesIfRegular where every factor is an axis-aligned
+// quadric or quartic in the squares) gives each point's single-point answers, bit for
+// bit: Singular, normal, |∇F| and nearest factor. On every gallery model and the 10
+// spheres, at points in and around the box (outside it the shortcut does not apply),
+// half of them on the surface, at three tolerances.
+TEST(RayCast, HitsFourAtATimeHaveTheSingleHitAnswers)
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-0.1, 1.1);
+  std::vector<Loaded> models = GalleryModels();
+  models.push_back(TenSpheres());
+  int starModels = 0, fourLaneRegular = 0, fourLaneSingular = 0, borderline = 0;
+  for (const Loaded& model : models)
+  {
+    const ProductKernel& k = model.Kernel;
+    const bool star = k.HasStarFactorsOnly();
+    starModels += star ? 1 : 0;
+    const double* b = model.Bounds;
+    const double h = 1e-3 *
+      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+        (b[5] - b[4]) * (b[5] - b[4]));
+    RayCaster caster(k);
+    caster.PrepareProbes(b, h);
+    const ProductKernel::ProbeBounds bounds = k.PrepareProbes(b, h);
+    for (int group = 0; group < 300; ++group)
+    {
+      const int count = 1 + group % ProductKernel::MaxVertices;
+      double p[ProductKernel::MaxVertices][3];
+      for (int j = 0; j < count; ++j)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          p[j][a] = b[2 * a] + unit(rng) * (b[2 * a + 1] - b[2 * a]);
+        }
+        for (int it = 0; it < 30 && (group + j) % 2 == 1; ++it)
+        {
+          // (on the surface: Newton steps along the gradient)
+          double g[3];
+          const double F = k.EvaluateWithGradient(p[j], g);
+          const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+          if (!(g2 > 0) || !std::isfinite(F))
+          {
+            break;
+          }
+          for (int a = 0; a < 3; ++a)
+          {
+            p[j][a] -= F * g[a] / g2;
+          }
+        }
+      }
+      const double tolerance = group % 3 == 0 ? 0.1 : group % 3 == 1 ? 1e-4 : 30.0;
+      double n[ProductKernel::MaxVertices][3], g[ProductKernel::MaxVertices];
+      int nearest[ProductKernel::MaxVertices];
+      bool singular[ProductKernel::MaxVertices];
+      caster.Attributes(count, p, h, tolerance, n, g, nearest, singular);
+      for (int j = 0; j < count; ++j)
+      {
+        double n1[3], g1;
+        int nearest1;
+        const bool singular1 = caster.Attributes(p[j], h, tolerance, n1, g1, nearest1);
+        EXPECT_EQ(singular[j], singular1) << model.Name << " group " << group << " point " << j;
+        EXPECT_TRUE(SameBits(g[j], g1)) << model.Name << " group " << group << ": " << g[j]
+                                        << " vs " << g1;
+        for (int c = 0; c < 3; ++c)
+        {
+          EXPECT_TRUE(SameBits(n[j][c], n1[c])) << model.Name << " group " << group;
+        }
+        EXPECT_EQ(nearest[j], nearest1) << model.Name << " group " << group;
+        if (star)
+        {
+          (singular1 ? fourLaneSingular : fourLaneRegular) += 1;
+        }
+      }
+      // At the tolerance where the shortcut's verdict at one of the points flips (by
+      // bisection on the single-point function): the same verdicts just below and just
+      // above it (a bound of the probes' |F| off in its last bits changes them).
+      const int J = group % count;
+      double below = 1e-300, above = 1e300, n1[3], g1;
+      int nearest1;
+      if (k.EvaluateVertexIfRegular(p[J], bounds, below, n1, g1, nearest1))
+      {
+        for (int it = 0; it < 200 && above > below * (1 + 1e-12); ++it)
+        {
+          const double mid = std::sqrt(below) * std::sqrt(above);
+          (k.EvaluateVertexIfRegular(p[J], bounds, mid, n1, g1, nearest1) ? below : above) = mid;
+        }
+        for (const double t : { below, above })
+        {
+          bool regular[ProductKernel::MaxVertices];
+          k.EvaluateVerticesIfRegular(count, p, bounds, t, n, g, nearest, regular);
+          EXPECT_EQ(regular[J], t == below) << model.Name << " group " << group;
+          borderline += star ? 1 : 0;
+        }
+      }
+    }
+  }
+  // (the models the four-point path is for, and both answers there)
+  EXPECT_GE(starModels, 3);
+  EXPECT_GT(fourLaneRegular, 500);
+  EXPECT_GT(fourLaneSingular, 20);
+  EXPECT_GT(borderline, 1000);
 }
