@@ -1478,11 +1478,13 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
   static_assert(MaxVertices == 4, "the lanes of V4");
   const double* slack[MaxVertices];
   static const double zeros[3 * MaxPlainVertex] = {};
-  bool any = false;
+  bool inside[MaxVertices], any = false;
   for (int l = 0; l < MaxVertices; ++l)
   {
     slack[l] = l < count ? ProbeSlack(bounds, factors, p[l]) : nullptr;
-    any = any || slack[l];
+    inside[l] = slack[l] != nullptr;
+    any = any || inside[l];
+    slack[l] = inside[l] ? slack[l] : zeros;
   }
   if (!any)
   {
@@ -1508,11 +1510,8 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
     const V4 af = PISURF_ABS4(fv[k]);
     for (int a = 0; a < 3; ++a)
     {
-      V4 s;
-      for (int l = 0; l < 4; ++l)
-      {
-        s[l] = (slack[l] ? slack[l] : zeros)[3 * k + a];
-      }
+      const size_t i = 3 * k + a;
+      const V4 s = V4{ slack[0][i], slack[1][i], slack[2][i], slack[3][i] };
       const V4 delta = h * PISURF_ABS4(gv[k][a]) * (1.0 + 1e-12) + s;
       t[a] = t[a] * (af + delta) + delta * q;
       grown[a] *= af + delta;
@@ -1525,7 +1524,7 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
   {
     const double tj[3] = { t[0][j], t[1][j], t[2][j] };
     const double grownj[3] = { grown[0][j], grown[1][j], grown[2][j] };
-    regular[j] = slack[j] && plain.Plain(j) &&
+    regular[j] = inside[j] && plain.Plain(j) &&
       RegularFromBounds(product[j], tj, grownj, factors, this->Blending, gradientNorm[j],
         bounds.Probe, tolerance);
   }
