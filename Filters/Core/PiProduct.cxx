@@ -1366,7 +1366,10 @@ ProductKernel::ProbeBounds ProductKernel::PrepareProbes(const double box[6], dou
 
 // EvaluateVertexIfRegular's slack for p: the bounds' row of the cell of their box that
 // holds p (null where p is outside the box, or the bounds are not for these factors).
-static const double* ProbeSlack(
+// (This and RegularFromBounds are inlined: called from EvaluateVerticesIfRegular's AVX2
+// clone as functions of their own, the four-point path took longer than four single
+// points, 80 against 70 ms for 400 000 points of the cup; inlined, 25 ms.)
+__attribute__((always_inline)) static inline const double* ProbeSlack(
   const ProductKernel::ProbeBounds& bounds, size_t factors, const double p[3])
 {
   if (bounds.Slack.size() != 3 * factors * bounds.Cells[0] * bounds.Cells[1] * bounds.Cells[2])
@@ -1391,7 +1394,7 @@ static const double* ProbeSlack(
 // EvaluateVertexIfRegular's verdict from the product's value, the bounds' sums t (the
 // largest change of a probe's product along each axis) and grown (the largest product
 // of the moved factors) and |∇F|.
-static bool RegularFromBounds(double product, const double t[3], const double grown[3],
+__attribute__((always_inline)) static inline bool RegularFromBounds(double product, const double t[3], const double grown[3],
   size_t count, double blending, double gradientNorm, double h, double tolerance)
 {
   const double absProduct = std::fabs(product);
