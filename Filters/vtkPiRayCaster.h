@@ -66,7 +66,9 @@
  * products whose |∇F| varies by orders of magnitude over the surface; for products of
  * up to 32 polynomial factors the six values are not computed where the factors'
  * values and gradients at p, with bounds of their higher derivatives over the cell of
- * the bounds that holds p, already prove the answer "regular"), `Tangent` and
+ * the bounds that holds p, already prove the answer "regular"; where every factor is a
+ * quadric or a quartic in the squares in a diagonal frame, four hits at a time, as the
+ * lanes of vector instructions, with the same results), `Tangent` and
  * `Factor` (the primitive nearest to zero there). Field data: `PiSurfaceModel` and
  * `PiRayViews` (17 numbers per view: type (0 axis/parallel, 1 perspective), w, h, the
  * ray origin of pixel (0, 0) (the eye for perspective), the per-pixel steps along u
