@@ -1394,8 +1394,9 @@ __attribute__((always_inline)) static inline const double* ProbeSlack(
 // EvaluateVertexIfRegular's verdict from the product's value, the bounds' sums t (the
 // largest change of a probe's product along each axis) and grown (the largest product
 // of the moved factors) and |∇F|.
-__attribute__((always_inline)) static inline bool RegularFromBounds(double product, const double t[3], const double grown[3],
-  size_t count, double blending, double gradientNorm, double h, double tolerance)
+__attribute__((always_inline)) static inline bool RegularFromBounds(double product,
+  const double t[3], const double grown[3], size_t count, double blending, double gradientNorm,
+  double h, double tolerance)
 {
   const double absProduct = std::fabs(product);
   const double largest = std::max({ 0.0, t[0], t[1], t[2] });
@@ -1504,7 +1505,8 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
   V4 product = one, q = one, t[3] = { zero, zero, zero }, grown[3] = { one, one, one };
   for (size_t k = 0; k < factors; ++k)
   {
-    if (!StarFactorAt(this->Factors[k].Polynomial, this->StarEvenQuartic[k] != 0, x, fv[k], gv[k]))
+    const PolynomialFactor& pf = this->Factors[k].Polynomial;
+    if (!StarFactorAt(pf, this->StarEvenQuartic[k] != 0, x, fv[k], gv[k]))
     {
       onePointAtATime(); // (a quartic's local coordinate reaches 1e30)
       return;

@@ -248,7 +248,8 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
   double& gradientNorm, int& nearest) const
 {
   if (!this->Molecule && probe == this->Probes.Probe && probe > 0 &&
-    this->Kernel->EvaluateVertexIfRegular(p, this->Probes, tolerance, normal, gradientNorm, nearest))
+    this->Kernel->EvaluateVertexIfRegular(
+      p, this->Probes, tolerance, normal, gradientNorm, nearest))
   {
     return false;
   }
@@ -263,7 +264,8 @@ void RayCaster::Attributes(int count, const double (*p)[3], double probe, double
   {
     for (int j = 0; j < count; ++j)
     {
-      singular[j] = this->Attributes(p[j], probe, tolerance, normal[j], gradientNorm[j], nearest[j]);
+      singular[j] =
+        this->Attributes(p[j], probe, tolerance, normal[j], gradientNorm[j], nearest[j]);
     }
     return;
   }
