@@ -1472,7 +1472,8 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
         p[j], bounds, tolerance, normal[j], gradientNorm[j], nearest[j]);
     }
   };
-  if (!this->StarFactorsOnly || count > MaxVertices || factors > MaxPlainVertex)
+  // (StarFactorsOnly holds for at most MaxPlainVertex factors: the arrays below.)
+  if (!this->StarFactorsOnly || count > MaxVertices)
   {
     onePointAtATime();
     return;

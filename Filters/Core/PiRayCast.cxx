@@ -259,6 +259,9 @@ bool RayCaster::Attributes(const double p[3], double probe, double tolerance, do
 void RayCaster::Attributes(int count, const double (*p)[3], double probe, double tolerance,
   double (*normal)[3], double* gradientNorm, int* nearest, bool* singular) const
 {
+  // (Other products one point at a time from here, not through
+  // EvaluateVerticesIfRegular's own fallback: that calls the single-point code from its
+  // AVX2 clone.)
   if (this->Molecule || !(probe == this->Probes.Probe && probe > 0) ||
     count > ProductKernel::MaxVertices || !this->Kernel->HasStarFactorsOnly())
   {

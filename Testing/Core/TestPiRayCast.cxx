@@ -99,6 +99,27 @@ Loaded TenSpheres(std::vector<std::array<double, 3>>* centres = nullptr)
   return FromText("10 spheres", text.str());
 }
 
+// p moved onto the surface by up to 30 Newton steps along the gradient, each kept in
+// `box` if given.
+void ToSurface(const ProductKernel& k, double p[3], const double* box)
+{
+  for (int it = 0; it < 30; ++it)
+  {
+    double g[3];
+    const double F = k.EvaluateWithGradient(p, g);
+    const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+    if (!(g2 > 0) || !std::isfinite(F))
+    {
+      break;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double next = p[a] - F * g[a] / g2;
+      p[a] = box ? std::min(box[2 * a + 1], std::max(box[2 * a], next)) : next;
+    }
+  }
+}
+
 // |∇F|·h over the largest |F| of the six probes, as RayCaster::Attributes's test sees
 // them (EvaluateVertexStar); +inf where the probes are all 0.
 double ProbeRatio(const ProductKernel& k, const double p[3], double h)
@@ -143,21 +164,7 @@ void CheckSkippedProbes(const Loaded& model, std::mt19937& rng, int samples, int
     }
     if (s % 2 == 1)
     {
-      // Half the points on the surface: a few Newton steps along the gradient.
-      for (int it = 0; it < 30; ++it)
-      {
-        double g[3];
-        const double F = k.EvaluateWithGradient(p, g);
-        const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-        if (!(g2 > 0) || !std::isfinite(F))
-        {
-          break;
-        }
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] = std::min(b[2 * a + 1], std::max(b[2 * a], p[a] - F * g[a] / g2));
-        }
-      }
+      ToSurface(k, p, b); // half the points on the surface
     }
     const double ratio = ProbeRatio(k, p, h);
     if (!(ratio > 0) || !std::isfinite(ratio))
@@ -319,20 +326,9 @@ TEST(RayCast, HitsFourAtATimeHaveTheSingleHitAnswers)
         {
           p[j][a] = b[2 * a] + unit(rng) * (b[2 * a + 1] - b[2 * a]);
         }
-        for (int it = 0; it < 30 && (group + j) % 2 == 1; ++it)
+        if ((group + j) % 2 == 1)
         {
-          // (on the surface: Newton steps along the gradient)
-          double g[3];
-          const double F = k.EvaluateWithGradient(p[j], g);
-          const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-          if (!(g2 > 0) || !std::isfinite(F))
-          {
-            break;
-          }
-          for (int a = 0; a < 3; ++a)
-          {
-            p[j][a] -= F * g[a] / g2;
-          }
+          ToSurface(k, p[j], nullptr); // (not kept in the box: some points lie outside)
         }
       }
       const double tolerance = group % 3 == 0 ? 0.1 : group % 3 == 1 ? 1e-4 : 30.0;
