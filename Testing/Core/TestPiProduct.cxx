@@ -92,6 +92,30 @@ Factor Wave()
   });
 }
 
+/// 30 unit spheres about 1e5 away (about 2^33 each near the origin: their plain product,
+/// 2^1000, and its gradient overflow a double).
+std::vector<Factor> FarSpheres()
+{
+  std::vector<Factor> far;
+  for (int i = 0; i < 30; ++i)
+  {
+    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
+    far.push_back(Sphere(c, 1.0));
+  }
+  return far;
+}
+
+/// A torus of major radius 1 and minor radius 0.25 about the z axis, centred at (x, 0, 0).
+PrimitiveSpec SmallTorus(double x = 0.0)
+{
+  PrimitiveSpec torus;
+  torus.Type = PrimitiveType::Torus;
+  torus.MajorRadius = 1.0;
+  torus.MinorRadius = 0.25;
+  torus.Center[0] = x;
+  return torus;
+}
+
 /// Random sizes for every type's parameters (radii, torus radii, exponent 4, cone angle).
 void RandomSizes(Random& rng, PrimitiveSpec& s)
 {
@@ -1221,12 +1245,7 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
   // 30 spheres about 1e5 away (about 2^33 each: their plain product, 2^1000, and its
   // gradient overflow) and a near one, within the 32 factors whose values EvaluateVertex
   // computes first: the product of those values must be the scaled one.
-  std::vector<Factor> many;
-  for (int i = 0; i < 30; ++i)
-  {
-    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
-    many.push_back(Sphere(c, 1.0));
-  }
+  std::vector<Factor> many = FarSpheres();
   many.push_back(Sphere(o, 1.0));
   const ProductKernel manyKernel(many, 1.0);
   check(manyKernel, p, 1e-3);
@@ -1307,20 +1326,12 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
   EXPECT_GT(evenQuartics, 50); // (the case the four-point path is for)
   // A point exactly on a sphere (its factor 0: not plain) beside ordinary ones.
   const double o[3] = { 0, 0, 0 }, c1[3] = { 3, 0, 0 };
-  PrimitiveSpec torus;
-  torus.Type = PrimitiveType::Torus;
-  torus.MajorRadius = 1.0;
-  torus.MinorRadius = 0.25;
+  const PrimitiveSpec torus = SmallTorus();
   const ProductKernel onSphere({ Sphere(o, 1.0), FromSpec(torus), Sphere(c1, 0.5) }, 0.1);
   check(onSphere, { { 0.3, 0.2, 0.1 }, { 1.0, 0.0, 0.0 }, { -0.5, 0.5, 0.2 }, { 2, 1, 0 } },
     "zero factor");
   // 30 spheres about 1e5 away and a near one, with a torus: the plain product overflows.
-  std::vector<Factor> many;
-  for (int i = 0; i < 30; ++i)
-  {
-    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
-    many.push_back(Sphere(c, 1.0));
-  }
+  std::vector<Factor> many = FarSpheres();
   many.push_back(FromSpec(torus));
   check(ProductKernel(many, 1.0), { { 0.3, -0.2, 0.1 }, { 1.1, 0.2, 0.0 }, { 0, 1, 0.2 } },
     "scaled product");
@@ -1337,11 +1348,7 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
 // of axis-aligned quadrics and quartics in the squares.
 TEST(ProductKernel, SegmentEvaluationGivesFAndItsSlopeAlongTheEdge)
 {
-  PrimitiveSpec torus;
-  torus.Type = PrimitiveType::Torus;
-  torus.MajorRadius = 1.0;
-  torus.MinorRadius = 0.25;
-  torus.Center[0] = 0.3;
+  const PrimitiveSpec torus = SmallTorus(0.3);
   PrimitiveSpec ellipsoid;
   ellipsoid.Type = PrimitiveType::Ellipsoid;
   ellipsoid.Radii[0] = 1.5;
@@ -1398,13 +1405,7 @@ TEST(ProductKernel, SegmentEvaluationGivesFAndItsSlopeAlongTheEdge)
   bool ok[2];
   k.EvaluateOnSegments(2, a, d, s, value, slope, ok);
   EXPECT_FALSE(ok[0] && ok[1]);
-  std::vector<Factor> many;
-  for (int i = 0; i < 30; ++i)
-  {
-    const double c[3] = { 1e5 + 10.0 * i, 3.0 * i, 0.0 };
-    many.push_back(Sphere(c, 1.0));
-  }
-  const ProductKernel huge(many, 1.0);
+  const ProductKernel huge(FarSpheres(), 1.0);
   ASSERT_TRUE(huge.HasStarFactorsOnly());
   huge.EvaluateOnSegments(1, a, d, s, value, slope, ok);
   EXPECT_FALSE(ok[0]);
