@@ -25,6 +25,7 @@
 
 #include <QObject>
 
+class pqPipelineSource;
 class pqRepresentation;
 class vtkSMProxy;
 
@@ -51,6 +52,9 @@ public:
 
 protected Q_SLOTS:
   void onRepresentationAdded(pqRepresentation* representation);
+  /// Names the VTK object of a PiSurfaces source or filter after its proxy (built-in
+  /// session), so that its error messages say which source refused a value.
+  void onSourceNamed(pqPipelineSource* source);
 
 private:
   Q_DISABLE_COPY(pqPiDisplayBehavior)

@@ -268,7 +268,7 @@ private:
       auto it = this->Params.find(name);
       if (it == this->Params.end())
       {
-        this->Fail("unknown name '" + name + "' (use x, y, z or a model parameter)", at);
+        this->Fail("unknown name '" + name + "' (" + this->KnownNames() + ")", at);
       }
       if (!std::isfinite(it->second))
       {
@@ -280,7 +280,26 @@ private:
     {
       this->Fail("unexpected end of expression");
     }
+    if (c == '*' && this->Pos > 0 && this->Text[this->Pos - 1] == '*')
+    {
+      this->Fail("unexpected '*' (write '^' for a power, e.g. x^2)");
+    }
     this->Fail("unexpected " + Quote(c));
+  }
+
+  // The names an expression may use, for the message about an unknown one.
+  std::string KnownNames() const
+  {
+    if (this->Params.empty())
+    {
+      return "use x, y or z";
+    }
+    std::string names;
+    for (const auto& entry : this->Params)
+    {
+      names += (names.empty() ? "" : ", ") + entry.first;
+    }
+    return "use x, y, z or a parameter of the model: " + names;
   }
 
   double Number()

@@ -156,6 +156,21 @@ TEST(Expression, UnknownName)
   ExpectError("2*w", { "unknown name 'w'", "at position 3" });
   ExpectError("a*x", { "unknown name 'a'", "at position 1" });
   ExpectError("xy", { "unknown name 'xy'", "at position 1" });
+  // Without parameters the message names only the variables.
+  ExpectError("a*x", { "(use x, y or z)" });
+}
+
+TEST(Expression, UnknownNameListsTheParameters)
+{
+  ExpectError("b*x", { "unknown name 'b' (use x, y, z or a parameter of the model: a, c)" },
+    { { "a", 1.0 }, { "c", 2.0 } });
+}
+
+TEST(Expression, DoubleStarSuggestsCaret)
+{
+  ExpectError("x ** 2", { "unexpected '*' (write '^' for a power, e.g. x^2)", "at position 4" });
+  // Two products with a space between are not a power.
+  ExpectError("x * * y", { "unexpected '*' at position 5" });
 }
 
 TEST(Expression, ImplicitMultiplicationIsRefused)

@@ -444,7 +444,7 @@ std::vector<Case> Catalogue()
   // ---- Expressions, in a model and through vtkPiPrimitive.
   const char* const expressionErrors[][2] = {
     { "x^2 +", "unexpected end of expression at position" },
-    { "x ** 2", "unexpected '*'" },
+    { "x ** 2", "unexpected '*' (write '^' for a power" },
     { "(x + 1", "missing ')'" },
     { "x + 1)", "unexpected ')'" },
     { "2 x", "write '*' for multiplication" },

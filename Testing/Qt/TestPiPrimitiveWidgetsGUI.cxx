@@ -15,6 +15,7 @@
 #include "pqInterfaceTracker.h"
 #include "pqObjectBuilder.h"
 #include "pqPipelineSource.h"
+#include "pqPropertyWidget.h"
 #include "pqProxyWidget.h"
 #include "pqRenderView.h"
 #include "pqStandardPropertyWidgetInterface.h"
@@ -26,12 +27,15 @@
 #include "vtkNew.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMUncheckedPropertyHelper.h"
 #include "vtkSMViewProxy.h"
 #include "vtkStringArray.h"
 
 #include <QHBoxLayout>
 
+#include <algorithm>
 #include <array>
+#include <vector>
 #include <cstdlib>
 
 namespace
@@ -206,6 +210,78 @@ int main(int argc, char* argv[])
     double now[3];
     vtkSMPropertyHelper(proxy, "Axis").Get(now, 3);
     CHECK(Near3(now, 1, 0, 0, 1e-9), "the plane's normal sets the cone's Axis: " << Str3(now));
+  }
+
+  // Every type, as a user picks it in the Type menu before Apply (the unchecked value):
+  // its placement widget with the parameters that widget edits, its other parameters,
+  // and nothing of another type's.
+  struct TypeView
+  {
+    const char* Name;
+    const char* Panel;               // ParaView's panel widget in the Placement group
+    const char* Widget;              // the representation of its 3D widget
+    std::vector<const char*> Shown;  // its parameters outside the placement widget
+  };
+  const std::vector<TypeView> types = {
+    { "Sphere", "InteractiveSphere", "SphereWidgetRepresentation", {} },
+    { "Ellipsoid", "InteractiveBox", "BoxWidgetRepresentation", {} },
+    { "Superellipsoid", "InteractiveBox", "BoxWidgetRepresentation", { "Exponent" } },
+    { "Torus", "InteractiveCylinder", "ImplicitCylinderWidgetRepresentation", { "MinorRadius" } },
+    { "Plane", "InteractivePlane", "DisplaySizedImplicitPlaneWidgetRepresentation", {} },
+    { "Cylinder", "InteractiveCylinder", "ImplicitCylinderWidgetRepresentation", {} },
+    { "Cone", "InteractivePlane", "DisplaySizedImplicitPlaneWidgetRepresentation", { "Angle" } },
+    { "Hyperboloid1", "InteractiveBox", "BoxWidgetRepresentation", {} },
+    { "Hyperboloid2", "InteractiveBox", "BoxWidgetRepresentation", {} },
+    { "Paraboloid", "InteractiveBox", "BoxWidgetRepresentation", {} },
+    { "HyperbolicParaboloid", "InteractiveBox", "BoxWidgetRepresentation", {} },
+    { "Polynomial", "InteractiveHandle", "HandleWidgetRepresentation", { "Expression" } },
+  };
+  const std::vector<const char*> typeOnly = { "Exponent", "MinorRadius", "Angle", "Expression" };
+  for (size_t type = 0; type < types.size(); ++type)
+  {
+    const TypeView& expected = types[type];
+    vtkSMUncheckedPropertyHelper(proxy, "Type").Set(static_cast<int>(type));
+    panel->updatePanel();
+    QCoreApplication::processEvents();
+    view->forceRender();
+    auto* placement = panel->findChild<pqPropertyWidget*>("pi_primitive_placement");
+    auto* current = placement ? placement->findChild<pqPropertyWidget*>(expected.Panel) : nullptr;
+    CHECK(placement && placement->isVisible() && current && current->isVisible(),
+      expected.Name << ": the Placement group shows ParaView's " << expected.Panel);
+    vtkSMNewWidgetRepresentationProxy* widget = FindWidget(viewProxy, expected.Widget, true);
+    const int count = CountWidgets(viewProxy, true);
+    CHECK(widget && count == 1,
+      expected.Name << ": the view shows its " << expected.Widget << " and no other widget ("
+                    << count << " shown)");
+    for (const char* name : typeOnly)
+    {
+      const bool wanted = std::find_if(expected.Shown.begin(), expected.Shown.end(),
+                            [&](const char* n) { return std::string(n) == name; }) !=
+        expected.Shown.end();
+      auto* w = panel->findChild<pqPropertyWidget*>(name);
+      CHECK(w && w->isVisible() == wanted,
+        expected.Name << ": " << name << (wanted ? " is shown" : " is hidden"));
+    }
+  }
+  // The sphere's widget places the sphere: moving it and Apply move the output.
+  vtkSMUncheckedPropertyHelper(proxy, "Type").Set(0);
+  panel->updatePanel();
+  QCoreApplication::processEvents();
+  if (vtkSMNewWidgetRepresentationProxy* sphere =
+        FindWidget(viewProxy, "SphereWidgetRepresentation", true))
+  {
+    vtkSMPropertyHelper(sphere, "Center").Set(std::array<double, 3>{ 0.5, -1, 2 }.data(), 3);
+    vtkSMPropertyHelper(sphere, "Radius").Set(0.75);
+    Drag(sphere);
+    apply();
+    pisurf::Model model;
+    const bool parsed = OutputModel(proxy, model);
+    const pisurf::PrimitiveSpec& s =
+      model.Primitives.empty() ? pisurf::PrimitiveSpec() : model.Primitives[0];
+    CHECK(parsed && s.Type == pisurf::PrimitiveType::Sphere && Near3(s.Center, 0.5, -1, 2) &&
+        Near(s.Radius, 0.75),
+      "dragging the sphere widget places the sphere: centre " << Str3(s.Center) << ", radius "
+                                                              << s.Radius);
   }
 
   window.hide();

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class pqPiPrimitivePlacementWidget
+ * @brief the "Placement" group of Pi Primitive: ParaView's 3D widget of the current Type
+ *
+ * A property-group widget (XML `panel_widget="pi_primitive_placement"`) over the
+ * geometric properties of the "Pi Primitive" source (Center, Radius, Radii,
+ * MajorRadius, Normal, Axis, Orientation and the box widget's reference box). ParaView
+ * gives each property to one group only, so one group per primitive type cannot share
+ * Center; this widget owns them all and shows, for the Type chosen in the panel (its
+ * unchecked value, before Apply), one of ParaView's interactive widgets with the
+ * parameters it edits:
+ * - Sphere: the sphere widget (Center, Radius);
+ * - Cylinder: the cylinder widget (Center, Axis, Radius); Torus: the cylinder through the
+ *   tube's centre line (Center, Axis, MajorRadius);
+ * - Plane: the plane widget (Center, Normal); Cone: the plane through the apex across
+ *   the axis (Center, Axis);
+ * - Ellipsoid, Superellipsoid, the hyperboloids and paraboloids: the box widget over
+ *   [-1, 1]^3 (Center, Orientation, Radii);
+ * - Polynomial: the point handle (Center).
+ * The widgets are ParaView's own (created through the registered property-widget
+ * interfaces from a property group made here), so Apply, Reset, undo and the view's
+ * widget visibility behave as for any ParaView filter.
+ */
+#ifndef pqPiPrimitivePlacementWidget_h
+#define pqPiPrimitivePlacementWidget_h
+
+#include "pqPropertyWidget.h"
+
+#include <QScopedPointer>
+
+class vtkSMPropertyGroup;
+
+class pqPiPrimitivePlacementWidget : public pqPropertyWidget
+{
+  Q_OBJECT
+  typedef pqPropertyWidget Superclass;
+
+public:
+  pqPiPrimitivePlacementWidget(
+    vtkSMProxy* proxy, vtkSMPropertyGroup* group, QWidget* parent = nullptr);
+  ~pqPiPrimitivePlacementWidget() override;
+
+  void apply() override;
+  void reset() override;
+  void select() override;
+  void deselect() override;
+  void setView(pqView* view) override;
+
+  /// The ParaView panel widget ("InteractiveSphere", ...) that places primitives of
+  /// `type` (a vtkPiPrimitive type), nullptr for none.
+  static const char* panelWidgetOf(int type);
+  /// The widget shown now (nullptr when the type has none).
+  pqPropertyWidget* currentWidget() const;
+
+private Q_SLOTS:
+  /// The Type (its value in the panel) changed: show that type's widget.
+  void updateType();
+
+private:
+  Q_DISABLE_COPY(pqPiPrimitivePlacementWidget)
+  class pqInternals;
+  QScopedPointer<pqInternals> Internals;
+};
+
+#endif
