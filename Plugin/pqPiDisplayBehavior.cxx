@@ -116,7 +116,7 @@ vtkIdType NumberOfPoints(vtkSMProxy* producer, unsigned int port)
 void MakeFactorCategorical(vtkSMProxy* representation, int count)
 {
   vtkSMProxy* lut = vtkSMPropertyHelper(representation, "LookupTable", true).GetAsProxy();
-  if (!lut || !lut->GetProperty("InterpretValuesAsCategories"))
+  if (!lut || !lut->GetProperty("IndexedLookup"))
   {
     return;
   }
@@ -130,7 +130,7 @@ void MakeFactorCategorical(vtkSMProxy* representation, int count)
     annotations.push_back("primitive " + std::to_string(i));
     colours.insert(colours.end(), Palette[i % 8], Palette[i % 8] + 3);
   }
-  vtkSMPropertyHelper(lut, "InterpretValuesAsCategories").Set(1);
+  vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
   vtkSMPropertyHelper annotationsHelper(lut, "Annotations");
   annotationsHelper.SetNumberOfElements(static_cast<unsigned int>(annotations.size()));
   for (unsigned int i = 0; i < annotations.size(); ++i)
@@ -164,8 +164,8 @@ void MakeAtomicNumberCategorical(vtkSMSessionProxyManager* pxm)
 {
   vtkNew<vtkSMTransferFunctionManager> manager;
   vtkSMProxy* lut = manager->GetColorTransferFunction("AtomicNumber", pxm);
-  if (!lut || !lut->GetProperty("InterpretValuesAsCategories") ||
-    vtkSMPropertyHelper(lut, "InterpretValuesAsCategories").GetAsInt() != 0)
+  if (!lut || !lut->GetProperty("IndexedLookup") ||
+    vtkSMPropertyHelper(lut, "IndexedLookup").GetAsInt() != 0)
   {
     return; // already categorical (ours, or the user's)
   }
@@ -180,7 +180,7 @@ void MakeAtomicNumberCategorical(vtkSMSessionProxyManager* pxm)
     colours.insert(colours.end(), Elements[i].Colour, Elements[i].Colour + 3);
   }
   vtkSMPropertyHelper(lut, "IndexedColors").Set(colours.data(), static_cast<unsigned int>(colours.size()));
-  vtkSMPropertyHelper(lut, "InterpretValuesAsCategories").Set(1);
+  vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
   lut->UpdateVTKObjects();
 }
 
