@@ -4,11 +4,20 @@
  * @brief the paper's default look for Pi-surfaces shown in a render view of the GUI
  *
  * An auto-start part of the PiSurfaces plugin. When the GUI creates a representation
- * for the output of "Pi Surface", "Pi Surface Model Reader" or "Pi Product" (the first
- * Show of that port in that view), it gives it the look of the paper's figures: the
- * Π-surface (port 0) solid grey and translucent (no scalar colouring, Opacity
- * DefaultOpacity), the Primitives port (port 1) coloured by `Factor`. "Pi Primitive"
- * outputs are left as ParaView shows them (opaque, coloured).
+ * in a render view (the first Show of that port in that view), it gives it the look of
+ * the paper's figures:
+ * - "Pi Surface", "Pi Surface Model Reader", "Pi Product": the Π-surface (port 0) solid
+ *   grey and translucent (Opacity DefaultOpacity) over the Primitives port (port 1)
+ *   coloured by `Factor` as categories, one palette colour per primitive; when the
+ *   Π-surface lies inside its primitives (F negative far away in most directions, as
+ *   with a negated factor digging a dent) the Π-surface is opaque and the primitives
+ *   translucent, so that the result stays in front. An empty Primitives port (Pi
+ *   Product without GeneratePrimitives) is hidden and not coloured.
+ * - "Pi Primitive": the next colour of the palette.
+ * - Molecules ("Pi Molecule Reader", "Molecular Pi Surface"): the `AtomicNumber` colour
+ *   map becomes categorical with CPK colours (H white, C grey, N blue, O red, ...).
+ * It also names the VTK object of each PiSurfaces source and filter after its proxy
+ * (vtkObject::SetObjectName), so that error messages say which source refused a value.
  *
  * It only touches newly created representations: nothing while a state file is
  * loaded (vtkSMSessionProxyManager::GetInLoadXMLState) or while undo/redo re-creates

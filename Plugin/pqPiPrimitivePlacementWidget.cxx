@@ -8,15 +8,19 @@
 #include "pqInterfaceTracker.h"
 #include "pqPropertyWidgetInterface.h"
 #include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkPiPrimitive.h"
 #include "vtkSMPropertyGroup.h"
 #include "vtkSMProxy.h"
 #include "vtkSMUncheckedPropertyHelper.h"
 #include "vtkSmartPointer.h"
 
 #include <QPointer>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include <cstring>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -79,6 +83,65 @@ void HideReferenceBoundsControls(QWidget* widget)
     }
   }
 }
+
+// The property whose value a validation message of the core names (the message starts
+// with the parameter's model key), or nullptr.
+const char* PropertyOfMessage(const std::string& message)
+{
+  static const std::pair<const char*, const char*> keys[] = { { "rotation axis", "RotationAxis" },
+    { "rotation angle", "RotationAngle" }, { "major_radius", "MajorRadius" },
+    { "minor_radius", "MinorRadius" }, { "radii", "Radii" }, { "radius", "Radius" },
+    { "exponent", "Exponent" }, { "normal", "Normal" }, { "angle", "Angle" },
+    { "expression", "Expression" }, { "center", "Center" }, { "scale", "Scale" },
+    { "axis", "Axis" } };
+  for (const auto& key : keys)
+  {
+    if (message.compare(0, std::strlen(key.first), key.first) == 0)
+    {
+      return key.second;
+    }
+  }
+  return nullptr;
+}
+
+// The primitive that the panel's values (unchecked: as typed, before Apply) define.
+std::string PanelError(vtkSMProxy* proxy)
+{
+  vtkNew<vtkPiPrimitive> primitive;
+  auto get3 = [&](const char* name, double v[3]) {
+    vtkSMUncheckedPropertyHelper(proxy, name).Get(v, 3);
+  };
+  double v[3];
+  primitive->SetType(vtkSMUncheckedPropertyHelper(proxy, "Type").GetAsInt());
+  get3("Center", v);
+  primitive->SetCenter(v);
+  primitive->SetRadius(vtkSMUncheckedPropertyHelper(proxy, "Radius").GetAsDouble());
+  get3("Radii", v);
+  primitive->SetRadii(v);
+  primitive->SetMajorRadius(vtkSMUncheckedPropertyHelper(proxy, "MajorRadius").GetAsDouble());
+  primitive->SetMinorRadius(vtkSMUncheckedPropertyHelper(proxy, "MinorRadius").GetAsDouble());
+  primitive->SetExponent(vtkSMUncheckedPropertyHelper(proxy, "Exponent").GetAsInt());
+  get3("Normal", v);
+  primitive->SetNormal(v);
+  primitive->SetAngle(vtkSMUncheckedPropertyHelper(proxy, "Angle").GetAsDouble());
+  get3("Axis", v);
+  primitive->SetAxis(v);
+  get3("RotationAxis", v);
+  primitive->SetRotationAxis(v);
+  primitive->SetRotationAngle(vtkSMUncheckedPropertyHelper(proxy, "RotationAngle").GetAsDouble());
+  get3("Orientation", v);
+  primitive->SetOrientation(v);
+  const char* expression = vtkSMUncheckedPropertyHelper(proxy, "Expression").GetAsString();
+  primitive->SetExpression(expression ? expression : "");
+  primitive->SetScale(vtkSMUncheckedPropertyHelper(proxy, "Scale").GetAsDouble());
+  // vtkPiPrimitive reports an invalid primitive to the output window: this check is
+  // silent (the GUI thread runs no other VTK code meanwhile), the source reports on Apply.
+  const int display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff();
+  const bool valid = primitive->IsValid();
+  vtkObject::SetGlobalWarningDisplay(display);
+  return valid ? std::string() : std::string(primitive->GetErrorMessage());
+}
 }
 
 class pqPiPrimitivePlacementWidget::pqInternals
@@ -88,6 +151,9 @@ public:
   QPointer<pqPropertyWidget> Current;
   vtkSmartPointer<vtkSMPropertyGroup> CurrentGroup;
   int CurrentType = -1;
+  QPointer<QWidget> Marked; // the widget marked as refused
+  QString MarkedStyle, MarkedTip;
+  bool CheckPending = false;
 };
 
 pqPiPrimitivePlacementWidget::pqPiPrimitivePlacementWidget(
@@ -105,7 +171,20 @@ pqPiPrimitivePlacementWidget::pqPiPrimitivePlacementWidget(
       type, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(updateType()));
     pqCoreUtilities::connect(type, vtkCommand::ModifiedEvent, this, SLOT(updateType()));
   }
+  // Any value typed in the panel: check the primitive it makes.
+  for (const char* name : { "Type", "Center", "Radius", "Radii", "MajorRadius", "MinorRadius",
+         "Exponent", "Normal", "Angle", "Axis", "RotationAxis", "RotationAngle",
+         "Orientation", "Expression", "Scale" })
+  {
+    if (vtkSMProperty* property = proxy->GetProperty(name))
+    {
+      pqCoreUtilities::connect(
+        property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(scheduleCheck()));
+    }
+  }
+  pqCoreUtilities::connect(proxy, vtkCommand::PropertyModifiedEvent, this, SLOT(scheduleCheck()));
   this->updateType();
+  this->scheduleCheck();
 }
 
 pqPiPrimitivePlacementWidget::~pqPiPrimitivePlacementWidget() = default;
@@ -193,6 +272,64 @@ void pqPiPrimitivePlacementWidget::updateType()
   {
     widget->select();
   }
+}
+
+void pqPiPrimitivePlacementWidget::scheduleCheck()
+{
+  if (!this->Internals->CheckPending)
+  {
+    this->Internals->CheckPending = true;
+    QTimer::singleShot(0, this, SLOT(checkValues()));
+  }
+}
+
+void pqPiPrimitivePlacementWidget::checkValues()
+{
+  pqInternals& internals = *this->Internals;
+  internals.CheckPending = false;
+  if (internals.Marked)
+  {
+    internals.Marked->setStyleSheet(internals.MarkedStyle);
+    internals.Marked->setToolTip(internals.MarkedTip);
+  }
+  internals.Marked = nullptr;
+  const std::string error = PanelError(this->proxy());
+  this->RefusalMessage = QString::fromStdString(error);
+  if (error.empty())
+  {
+    return;
+  }
+  // The refused parameter's field: one of the panel's own, or this group (whose
+  // properties ParaView's widget edits).
+  const char* name = PropertyOfMessage(error);
+  QWidget* target = nullptr;
+  vtkSMPropertyGroup* group = internals.CurrentGroup;
+  for (unsigned int i = 0; name && group && i < group->GetNumberOfProperties(); ++i)
+  {
+    if (group->GetPropertyName(i) && std::strcmp(group->GetPropertyName(i), name) == 0)
+    {
+      target = internals.Current;
+    }
+  }
+  if (!target && name && this->parentWidget())
+  {
+    target = this->parentWidget()->findChild<pqPropertyWidget*>(name);
+  }
+  if (!target)
+  {
+    return;
+  }
+  internals.Marked = target;
+  internals.MarkedStyle = target->styleSheet();
+  internals.MarkedTip = target->toolTip();
+  target->setStyleSheet("QLineEdit, QTextEdit, QPlainTextEdit { background-color: #f4c7c3; }");
+  target->setToolTip(QString("Refused: %1. The last valid surface is kept.")
+                       .arg(QString::fromStdString(error)));
+}
+
+QString pqPiPrimitivePlacementWidget::refusal() const
+{
+  return this->RefusalMessage;
 }
 
 void pqPiPrimitivePlacementWidget::apply()

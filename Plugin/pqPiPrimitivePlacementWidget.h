@@ -21,6 +21,12 @@
  * The widgets are ParaView's own (created through the registered property-widget
  * interfaces from a property group made here), so Apply, Reset, undo and the view's
  * widget visibility behave as for any ParaView filter.
+ *
+ * It also checks, as values are typed, the primitive that the panel's values make
+ * (vtkPiPrimitive's own validation, the one the source runs): a refused value (a
+ * negative radius, an odd exponent, a malformed expression) has its field marked red
+ * with the reason as tooltip, before and after Apply, until it is valid again; the
+ * source meanwhile keeps its last valid surface.
  */
 #ifndef pqPiPrimitivePlacementWidget_h
 #define pqPiPrimitivePlacementWidget_h
@@ -52,15 +58,21 @@ public:
   static const char* panelWidgetOf(int type);
   /// The widget shown now (nullptr when the type has none).
   pqPropertyWidget* currentWidget() const;
+  /// Why the panel's values are refused (empty when they make a valid primitive).
+  QString refusal() const;
 
 private Q_SLOTS:
   /// The Type (its value in the panel) changed: show that type's widget.
   void updateType();
+  /// A value changed: check the panel's values once the event loop is back.
+  void scheduleCheck();
+  void checkValues();
 
 private:
   Q_DISABLE_COPY(pqPiPrimitivePlacementWidget)
   class pqInternals;
   QScopedPointer<pqInternals> Internals;
+  QString RefusalMessage;
 };
 
 #endif

@@ -17,6 +17,7 @@
 #include "pqInterfaceTracker.h"
 #include "pqPipelineSource.h"
 #include "pqPropertiesPanel.h"
+#include "pqPropertyWidget.h"
 #include "pqStandardPropertyWidgetInterface.h"
 #include "vtkCamera.h"
 #include "vtkNew.h"
@@ -30,6 +31,7 @@
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionManager.h"
+#include "vtkSMUncheckedPropertyHelper.h"
 #include "vtkTesting.h"
 
 #include <QHBoxLayout>
@@ -273,6 +275,44 @@ int main(int argc, char* argv[])
     CHECK(!Problems(output->Text), "Pi Primitive: nothing in the output window:\n"
         << output->Text);
   }
+  // A refused value: the field is marked with the reason, the message names the source,
+  // and the last valid surface stays.
+  {
+    auto* placement = panel->findChild<pqPropertyWidget*>("pi_primitive_placement");
+    auto* sphere = placement ? placement->findChild<pqPropertyWidget*>("InteractiveSphere") : nullptr;
+    vtkSMUncheckedPropertyHelper(a->getProxy(), "Radius").Set(-0.1);
+    QTest::qWait(50);
+    CHECK(sphere && sphere->styleSheet().contains("background") &&
+        sphere->toolTip().contains("radius must be a positive finite number"),
+      "a negative radius is marked before Apply, with the reason");
+    output->Text.clear();
+    panel->apply();
+    QCoreApplication::processEvents();
+    const std::string name = a->getSMName().toStdString();
+    CHECK(output->Text.find("radius must be a positive") != std::string::npos &&
+        output->Text.find(name) != std::string::npos,
+      "the refusal names the source '" << name << "':\n" << output->Text);
+    CHECK(sphere && sphere->styleSheet().contains("background"),
+      "after Apply the refused radius stays marked");
+    CHECK(vtkSMSourceProxy::SafeDownCast(a->getProxy())->GetDataInformation(0)->GetNumberOfPoints() > 0,
+      "the last valid sphere stays");
+    vtkSMUncheckedPropertyHelper(a->getProxy(), "Radius").Set(1);
+    panel->apply();
+    QTest::qWait(50);
+    CHECK(sphere && !sphere->styleSheet().contains("background"), "a valid radius is unmarked");
+    // A parameter outside the widget: the torus's tube radius.
+    vtkSMUncheckedPropertyHelper(a->getProxy(), "Type").Set(3);
+    vtkSMUncheckedPropertyHelper(a->getProxy(), "MinorRadius").Set(-1);
+    QTest::qWait(50);
+    auto* minor = panel->findChild<pqPropertyWidget*>("MinorRadius");
+    CHECK(minor && minor->styleSheet().contains("background") &&
+        minor->toolTip().contains("minor_radius"),
+      "a negative tube radius marks the MinorRadius field");
+    panel->reset();
+    QTest::qWait(50);
+    CHECK(minor && !minor->styleSheet().contains("background"), "Reset unmarks it");
+  }
+
   // Pi Product of three primitives: the inputs stay shown, the product over them.
   pqPipelineSource* b = builder->createSource("sources", "PiPrimitive", server);
   vtkSMPropertyHelper(b->getProxy(), "Center").Set(0, 1.5);
