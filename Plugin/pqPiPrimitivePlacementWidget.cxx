@@ -11,6 +11,7 @@
 #include "vtkNew.h"
 #include "vtkPiPrimitive.h"
 #include "vtkSMPropertyGroup.h"
+#include "vtkSMPropertyIterator.h"
 #include "vtkSMProxy.h"
 #include "vtkSMUncheckedPropertyHelper.h"
 #include "vtkSmartPointer.h"
@@ -172,15 +173,12 @@ pqPiPrimitivePlacementWidget::pqPiPrimitivePlacementWidget(
     pqCoreUtilities::connect(type, vtkCommand::ModifiedEvent, this, SLOT(updateType()));
   }
   // Any value typed in the panel: check the primitive it makes.
-  for (const char* name : { "Type", "Center", "Radius", "Radii", "MajorRadius", "MinorRadius",
-         "Exponent", "Normal", "Angle", "Axis", "RotationAxis", "RotationAngle",
-         "Orientation", "Expression", "Scale" })
+  vtkSmartPointer<vtkSMPropertyIterator> properties;
+  properties.TakeReference(proxy->NewPropertyIterator());
+  for (properties->Begin(); !properties->IsAtEnd(); properties->Next())
   {
-    if (vtkSMProperty* property = proxy->GetProperty(name))
-    {
-      pqCoreUtilities::connect(
-        property, vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(scheduleCheck()));
-    }
+    pqCoreUtilities::connect(properties->GetProperty(),
+      vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(scheduleCheck()));
   }
   pqCoreUtilities::connect(proxy, vtkCommand::PropertyModifiedEvent, this, SLOT(scheduleCheck()));
   this->updateType();
@@ -188,11 +186,6 @@ pqPiPrimitivePlacementWidget::pqPiPrimitivePlacementWidget(
 }
 
 pqPiPrimitivePlacementWidget::~pqPiPrimitivePlacementWidget() = default;
-
-const char* pqPiPrimitivePlacementWidget::panelWidgetOf(int type)
-{
-  return PlacementOf(type).PanelWidget;
-}
 
 pqPropertyWidget* pqPiPrimitivePlacementWidget::currentWidget() const
 {
@@ -294,7 +287,6 @@ void pqPiPrimitivePlacementWidget::checkValues()
   }
   internals.Marked = nullptr;
   const std::string error = PanelError(this->proxy());
-  this->RefusalMessage = QString::fromStdString(error);
   if (error.empty())
   {
     return;
@@ -325,11 +317,6 @@ void pqPiPrimitivePlacementWidget::checkValues()
   target->setStyleSheet("QLineEdit, QTextEdit, QPlainTextEdit { background-color: #f4c7c3; }");
   target->setToolTip(QString("Refused: %1. The last valid surface is kept.")
                        .arg(QString::fromStdString(error)));
-}
-
-QString pqPiPrimitivePlacementWidget::refusal() const
-{
-  return this->RefusalMessage;
 }
 
 void pqPiPrimitivePlacementWidget::apply()

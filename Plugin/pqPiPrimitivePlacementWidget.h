@@ -53,13 +53,8 @@ public:
   void deselect() override;
   void setView(pqView* view) override;
 
-  /// The ParaView panel widget ("InteractiveSphere", ...) that places primitives of
-  /// `type` (a vtkPiPrimitive type), nullptr for none.
-  static const char* panelWidgetOf(int type);
   /// The widget shown now (nullptr when the type has none).
   pqPropertyWidget* currentWidget() const;
-  /// Why the panel's values are refused (empty when they make a valid primitive).
-  QString refusal() const;
 
 private Q_SLOTS:
   /// The Type (its value in the panel) changed: show that type's widget.
@@ -72,7 +67,6 @@ private:
   Q_DISABLE_COPY(pqPiPrimitivePlacementWidget)
   class pqInternals;
   QScopedPointer<pqInternals> Internals;
-  QString RefusalMessage;
 };
 
 #endif
