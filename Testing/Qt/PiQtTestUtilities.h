@@ -6,7 +6,8 @@
  * A failure counter with its CHECK macro, the Qt and ParaView applications, a builtin
  * session with the plugin loaded,
  * widgets found by object name, typing into a field, the Pi Surface's Model text, near
- * comparisons, and ParaView's interactive widgets found in a view.
+ * comparisons, ParaView's interactive widgets found in a view, and a recorder of what
+ * reaches the output window.
  * Each test is its own program: everything here is per translation unit.
  */
 #ifndef PiQtTestUtilities_h
@@ -22,6 +23,8 @@
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMProxyManager.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 
 #include <QApplication>
 #include <QCoreApplication>
@@ -64,6 +67,23 @@ struct TestApplication
   {
   }
 };
+
+// Records what reaches ParaView's output window (warnings, errors), one message a line,
+// and echoes it to the terminal. Install with vtkOutputWindow::SetInstance.
+class OutputRecorder : public vtkOutputWindow
+{
+public:
+  static OutputRecorder* New();
+  vtkTypeMacro(OutputRecorder, vtkOutputWindow);
+  void DisplayText(const char* text) override
+  {
+    this->Text += text ? text : "";
+    this->Text += "\n";
+    std::cerr << (text ? text : "") << "\n";
+  }
+  std::string Text;
+};
+vtkStandardNewMacro(OutputRecorder);
 
 // A builtin session with the plugin (its .so) loaded; null, with a message, if either fails.
 inline pqServer* StartSession(pqObjectBuilder* builder, const std::string& plugin)

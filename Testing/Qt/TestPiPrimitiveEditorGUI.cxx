@@ -40,20 +40,6 @@
 
 namespace
 {
-// Records warnings, to check that a refused edit reaches ParaView's output window.
-class WarningRecorder : public vtkOutputWindow
-{
-public:
-  static WarningRecorder* New();
-  vtkTypeMacro(WarningRecorder, vtkOutputWindow);
-  void DisplayText(const char* text) override
-  {
-    this->Text += text ? text : "";
-    std::cerr << (text ? text : "");
-  }
-  std::string Text;
-};
-vtkStandardNewMacro(WarningRecorder);
 
 
 bool Parse(vtkSMProxy* proxy, pisurf::Model& model)
@@ -86,7 +72,7 @@ int main(int argc, char* argv[])
   const std::string plugin = argv[1];
   TestApplication<> application(argv[0]);
   pqApplicationCore& core = application.Application;
-  vtkNew<WarningRecorder> recorder;
+  vtkNew<OutputRecorder> recorder; // a refused edit reaches the output window
   vtkOutputWindow::SetInstance(recorder);
 
   pqObjectBuilder* builder = core.getObjectBuilder();
