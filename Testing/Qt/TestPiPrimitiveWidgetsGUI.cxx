@@ -6,8 +6,11 @@
 // turning the box (its proxy set, then the interaction events its VTK widget fires
 // during a drag) turns the ellipsoid once applied; a torus gets a cylinder through its
 // tube's centre line (Center, Axis, MajorRadius), whose radius edits MajorRadius; a cone
-// gets a plane through its apex across its axis, whose normal edits Axis. Writes
-// PiPrimitiveBox.png (the README's picture) into the picture folder when given one.
+// gets a plane through its apex across its axis, whose normal edits Axis. Then every
+// type, picked in the panel before Apply: its Placement group shows the expected widget,
+// the view shows that widget and no other, and only that type's own parameters show;
+// the sphere's widget, dragged, moves the sphere. Writes PiPrimitiveBox.png (the
+// README's picture) into the picture folder when given one.
 #include "PiQtTestUtilities.h"
 #include "PiModel.h"
 
