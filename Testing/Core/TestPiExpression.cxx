@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of pisurf::ParseExpression and IsValidParameterName (PiExpression.h).
 #include "PiExpression.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

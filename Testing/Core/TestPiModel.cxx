@@ -3,7 +3,7 @@
 // of every model in Testing/Data/Models.
 #include "PiModel.h"
 #include "PiProduct.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

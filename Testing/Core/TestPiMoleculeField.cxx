@@ -3,6 +3,7 @@
 // two-level far field (cells and supercells) stays within its stated bound and never
 // changes a sign; ClassifyBox never decides wrongly; FirstRoot's vertex is within the
 // tolerance of a true root with F > 0 before it.
+#include "PiCoreTestUtilities.h"
 #include "PiMolecule.h"
 
 #include <gtest/gtest.h>
@@ -14,36 +15,10 @@
 
 namespace
 {
-// A protein-like cluster: atoms on a jittered lattice of 1.6 A (about a protein's atom
-// density) inside a ball, radii 1.5 to 1.8 A.
-struct Cluster
-{
-  std::vector<double> Centers, Radii;
-  double Region[6];
-};
-
+using Cluster = pisurf_test::MoleculeCluster;
 Cluster MakeCluster(double radius, unsigned seed)
 {
-  Cluster c;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.35, 0.35), r(1.5, 1.8);
-  const int n = static_cast<int>(radius / 1.6);
-  for (int i = -n; i <= n; ++i)
-    for (int j = -n; j <= n; ++j)
-      for (int k = -n; k <= n; ++k)
-      {
-        const double p[3] = { 1.6 * i + jitter(rng), 1.6 * j + jitter(rng), 1.6 * k + jitter(rng) };
-        if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > radius * radius)
-        {
-          continue;
-        }
-        c.Centers.insert(c.Centers.end(), p, p + 3);
-        c.Radii.push_back(r(rng));
-      }
-  const double m = radius + 4.0;
-  const double region[6] = { -m, m, -m, m, -m, m };
-  std::copy(region, region + 6, c.Region);
-  return c;
+  return pisurf_test::MakeMoleculeCluster(radius, seed);
 }
 }
 

@@ -2,7 +2,7 @@
 // Unit tests of pisurf::Polynomial3 (PiPolynomial.h).
 #include "PiExpression.h"
 #include "PiPolynomial.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // Unit tests of the primitives: BuildFactor, PolynomialFactor, RotationMatrix and the
 // type names (PiPrimitiveSpec.h).
 #include "PiPrimitiveSpec.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

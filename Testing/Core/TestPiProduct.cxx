@@ -2,7 +2,7 @@
 // Unit tests of pisurf::ProductKernel (PiProduct.h): F = Π f_i − r and its gradient.
 #include "PiProduct.h"
 #include "PiFloat.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

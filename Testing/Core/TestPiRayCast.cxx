@@ -5,7 +5,7 @@
 #include "PiModel.h"
 #include "PiProduct.h"
 #include "PiRayCast.h"
-#include "PiTestUtilities.h"
+#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 

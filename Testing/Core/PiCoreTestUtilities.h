@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file PiTestUtilities.h
+ * @file PiCoreTestUtilities.h
  * @brief helpers shared by the unit tests of the PiSurfaces core kernels
  *
  * Seeded random points, central finite differences, relative comparisons and a matcher
  * for error messages ("fragment" and "at position N").
  */
-#ifndef PiTestUtilities_h
-#define PiTestUtilities_h
+#ifndef PiCoreTestUtilities_h
+#define PiCoreTestUtilities_h
 
 #include "PiPolynomial.h"
 
@@ -179,6 +179,39 @@ inline ::testing::AssertionResult SameTermsNear(
   };
   ::testing::AssertionResult r = check(a, b);
   return r ? check(b, a) : r;
+}
+
+/// A protein-like cluster of atoms: centres on a jittered lattice of 1.6 A (about a
+/// protein's atom density) inside a ball of `radius`, radii 1.5 to 1.8 A, and a region
+/// 4 A beyond the ball.
+struct MoleculeCluster
+{
+  std::vector<double> Centers, Radii;
+  double Region[6];
+};
+
+inline MoleculeCluster MakeMoleculeCluster(double radius, unsigned seed)
+{
+  MoleculeCluster c;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.35, 0.35), r(1.5, 1.8);
+  const int n = static_cast<int>(radius / 1.6);
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j)
+      for (int k = -n; k <= n; ++k)
+      {
+        const double p[3] = { 1.6 * i + jitter(rng), 1.6 * j + jitter(rng), 1.6 * k + jitter(rng) };
+        if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > radius * radius)
+        {
+          continue;
+        }
+        c.Centers.insert(c.Centers.end(), p, p + 3);
+        c.Radii.push_back(r(rng));
+      }
+  const double m = radius + 4.0;
+  const double region[6] = { -m, m, -m, m, -m, m };
+  std::copy(region, region + 6, c.Region);
+  return c;
 }
 }
 

@@ -1,0 +1,395 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The contract of pisurf::Field (PiField.h), checked on every field the algorithms
+// mesh, ray-cast and sample: the product of primitives (gallery models, and a product
+// far beyond a double's range) and the molecule's Global and Local fields. A new field
+// is done when it passes this suite:
+// - the same point evaluates to the same bits, from any thread;
+// - the optional box answers (EvaluateBox, OffOuterSideBox) equal the point answers bit
+//   for bit;
+// - ClassifyBox is never wrong against dense sampling of random boxes;
+// - EvaluateCompressed has F's sign, and F's sign stays exact where |F| leaves the
+//   double range (clamped to ±DBL_MAX, never inf or NaN);
+// - EvaluateVertex's normal agrees with finite differences of F;
+// - RefineEdge and FirstRoot, where answered, bracket a true sign change of F within
+//   their tolerance.
+#include "PiCoreTestUtilities.h"
+#include "PiModel.h"
+#include "PiMolecule.h"
+#include "PiProductField.h"
+
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+using pisurf_test::Point;
+using pisurf_test::Random;
+using pisurf_test::SameBits;
+
+struct FieldCase
+{
+  std::string Name;
+  std::shared_ptr<const pisurf::Field> Field;
+  double Region[6]; // where the surface and its surroundings lie
+  double Scale;     // the size of the model, for tolerances
+  // 1 − cos of the largest angle between EvaluateVertex's normal and the difference
+  // quotient of the values: a field whose values approximate F far from the surface
+  // within a stated bound (the molecule's Global far field) differs there by more
+  // than rounding.
+  double NormalTolerance = 1e-6;
+  // Whether |F| and |∇F| stay within the double range somewhere in the region (not for
+  // products of hundreds of factors).
+  bool InRange = true;
+};
+
+std::shared_ptr<const pisurf::Field> ProductOf(std::vector<pisurf::PrimitiveSpec> primitives,
+  const pisurf::ParameterMap& parameters, double blending)
+{
+  std::vector<pisurf::Factor> factors;
+  for (const pisurf::PrimitiveSpec& spec : primitives)
+  {
+    pisurf::Factor factor;
+    std::string error;
+    if (!pisurf::BuildFactor(spec, parameters, factor.Polynomial, error))
+    {
+      throw std::runtime_error(error);
+    }
+    factors.push_back(factor);
+  }
+  return std::make_shared<pisurf::ProductField>(
+    std::make_shared<pisurf::ProductKernel>(std::move(factors), blending));
+}
+
+FieldCase GalleryCase(const std::string& name, const double region[6])
+{
+  std::ifstream in(std::string(PISURF_MODELS_DIR) + "/" + name + ".pisurf");
+  std::stringstream text;
+  text << in.rdbuf();
+  pisurf::Model model;
+  std::string error;
+  if (!pisurf::ParseModel(text.str(), model, error))
+  {
+    throw std::runtime_error(name + ": " + error);
+  }
+  FieldCase c{ "product/" + name, ProductOf(model.Primitives, model.Parameters, model.Blending),
+    {}, 0.0 };
+  std::copy(region, region + 6, c.Region);
+  c.Scale = std::max({ region[1] - region[0], region[3] - region[2], region[5] - region[4] });
+  return c;
+}
+
+// 2000 unit spheres along x, 3 apart: the product reaches 10^±4000 away from the spheres.
+FieldCase LongProductCase()
+{
+  std::vector<pisurf::PrimitiveSpec> spheres(2000);
+  for (size_t i = 0; i < spheres.size(); ++i)
+  {
+    spheres[i].Type = pisurf::PrimitiveType::Sphere;
+    spheres[i].Center[0] = 3.0 * static_cast<double>(i);
+    spheres[i].Radius = 1.0;
+  }
+  FieldCase c{ "product/2000_spheres", ProductOf(spheres, {}, 1.0),
+    { -2.0, 20.0, -2.0, 2.0, -2.0, 2.0 }, 22.0 };
+  c.InRange = false;
+  return c;
+}
+
+FieldCase MoleculeCase(pisurf::MoleculeMode mode)
+{
+  const pisurf_test::MoleculeCluster cluster = pisurf_test::MakeMoleculeCluster(7.0, 21);
+  pisurf::MoleculeSettings settings;
+  settings.Mode = mode;
+  FieldCase c{ mode == pisurf::MoleculeMode::Global ? "molecule/global" : "molecule/local",
+    std::make_shared<pisurf::MoleculeField>(
+      cluster.Centers, cluster.Radii, settings, cluster.Region),
+    {}, 0.0 };
+  std::copy(cluster.Region, cluster.Region + 6, c.Region);
+  c.Scale = cluster.Region[1] - cluster.Region[0];
+  c.NormalTolerance = mode == pisurf::MoleculeMode::Global ? 1e-3 : 1e-6;
+  c.InRange = mode == pisurf::MoleculeMode::Local; // Local's F = Π g_i − r/(1 + r) is moderate
+  return c;
+}
+
+std::vector<FieldCase> AllFields()
+{
+  const double cup[6] = { -1.6, 1.6, -1.6, 1.6, -1.2, 1.6 };
+  const double table[6] = { -1.8, 1.8, -1.8, 1.8, -1.5, 1.5 };
+  const double eggplant[6] = { -2.2, 2.2, -1.6, 1.6, -1.6, 1.6 };
+  const double cylinders[6] = { -2.0, 2.0, -2.0, 2.0, -2.0, 2.0 };
+  return { GalleryCase("cup_a1.0", cup), GalleryCase("table", table),
+    GalleryCase("eggplant_r0.25", eggplant), GalleryCase("crossed_cylinders_r0.001", cylinders),
+    LongProductCase(), MoleculeCase(pisurf::MoleculeMode::Global),
+    MoleculeCase(pisurf::MoleculeMode::Local) };
+}
+
+Point InRegion(Random& random, const double region[6])
+{
+  return { random.Uniform(region[0], region[1]), random.Uniform(region[2], region[3]),
+    random.Uniform(region[4], region[5]) };
+}
+
+int Sign(double v)
+{
+  return (v > 0) - (v < 0);
+}
+
+// gtest prints a failing case's parameter: its name, not its bytes.
+void PrintTo(const FieldCase& c, std::ostream* os)
+{
+  *os << c.Name;
+}
+
+class FieldConformance : public ::testing::TestWithParam<FieldCase>
+{
+};
+
+TEST_P(FieldConformance, ValuesAreFiniteAndTheSameFromEveryThread)
+{
+  const FieldCase& c = GetParam();
+  Random random(1);
+  std::vector<Point> points(3000);
+  for (Point& p : points)
+  {
+    p = InRegion(random, c.Region);
+  }
+  std::vector<double> serial(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    serial[i] = c.Field->Evaluate(points[i].data());
+    ASSERT_TRUE(std::isfinite(serial[i])) << c.Name << " at point " << i;
+    ASSERT_TRUE(SameBits(serial[i], c.Field->Evaluate(points[i].data()))) << c.Name;
+  }
+  std::vector<std::vector<double>> threaded(4, std::vector<double>(points.size()));
+  std::vector<std::thread> threads;
+  for (size_t t = 0; t < threaded.size(); ++t)
+  {
+    threads.emplace_back([&, t] {
+      // Each thread walks the points from its own start, so they meet at different points.
+      for (size_t n = 0; n < points.size(); ++n)
+      {
+        const size_t i = (n + t * points.size() / 4) % points.size();
+        threaded[t][i] = c.Field->Evaluate(points[i].data());
+      }
+    });
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  for (const std::vector<double>& values : threaded)
+  {
+    for (size_t i = 0; i < points.size(); ++i)
+    {
+      ASSERT_TRUE(SameBits(values[i], serial[i])) << c.Name << " at point " << i;
+    }
+  }
+}
+
+TEST_P(FieldConformance, BoxAnswersEqualPointAnswers)
+{
+  const FieldCase& c = GetParam();
+  const double h = c.Scale / 23.0;
+  const double origin[3] = { c.Region[0], c.Region[2], c.Region[4] };
+  const double spacing[3] = { h, h, h };
+  const int first[3] = { 3, 5, 2 }, last[3] = { 14, 11, 17 };
+  const long nx = last[0] - first[0] + 1, ny = last[1] - first[1] + 1;
+  const long count = nx * ny * (last[2] - first[2] + 1);
+  std::vector<double> values(count);
+  std::vector<unsigned char> flags(count);
+  const bool box = c.Field->EvaluateBox(origin, spacing, first, last, nx, nx * ny, values.data());
+  const bool off =
+    c.Field->OffOuterSideBox(origin, spacing, first, last, nx, nx * ny, flags.data());
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
+      {
+        const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+          origin[2] + k * spacing[2] };
+        const long at = (k - first[2]) * nx * ny + (j - first[1]) * nx + (i - first[0]);
+        if (box)
+        {
+          ASSERT_TRUE(SameBits(values[at], c.Field->Evaluate(p))) << c.Name;
+        }
+        if (off)
+        {
+          ASSERT_EQ(flags[at] != 0, c.Field->OffOuterSide(p)) << c.Name;
+        }
+      }
+}
+
+TEST_P(FieldConformance, ClassifyBoxIsNeverWrong)
+{
+  const FieldCase& c = GetParam();
+  Random random(2);
+  int decided = 0;
+  for (int n = 0; n < 300; ++n)
+  {
+    const Point centre = InRegion(random, c.Region);
+    const double half = c.Scale * random.Uniform(0.002, 0.1);
+    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half,
+      centre[1] + half, centre[2] - half, centre[2] + half };
+    const int sign = c.Field->ClassifyBox(box);
+    if (sign == 0)
+    {
+      continue;
+    }
+    ++decided;
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j)
+        for (int k = 0; k <= 8; ++k)
+        {
+          const double p[3] = { box[0] + (box[1] - box[0]) * i / 8.0,
+            box[2] + (box[3] - box[2]) * j / 8.0, box[4] + (box[5] - box[4]) * k / 8.0 };
+          ASSERT_EQ(Sign(c.Field->Evaluate(p)), sign)
+            << c.Name << ": box " << n << " classified " << sign << " holds F = "
+            << c.Field->Evaluate(p);
+        }
+  }
+  EXPECT_GT(decided, 30) << c.Name << ": ClassifyBox decides some boxes";
+}
+
+TEST_P(FieldConformance, SignIsExactBeyondTheDoubleRange)
+{
+  const FieldCase& c = GetParam();
+  Random random(3);
+  for (int n = 0; n < 3000; ++n)
+  {
+    const Point p = InRegion(random, c.Region);
+    const double f = c.Field->Evaluate(p.data());
+    const double compressed = c.Field->EvaluateCompressed(p.data());
+    ASSERT_TRUE(std::isfinite(f) && std::isfinite(compressed)) << c.Name;
+    ASSERT_EQ(Sign(compressed), Sign(f)) << c.Name << " at " << p[0] << " " << p[1];
+    ASSERT_LE(std::fabs(f), DBL_MAX) << c.Name;
+  }
+  if (c.Name != "product/2000_spheres")
+  {
+    return;
+  }
+  // Between spheres i and i+1 every factor is positive: F = +huge − r. Inside sphere i
+  // one factor is negative: F = −huge. Both far beyond 10^308.
+  const double between[3] = { 1.5, 0.0, 0.0 }, inside[3] = { 3.0 * 700 + 0.5, 0.0, 0.0 };
+  EXPECT_EQ(c.Field->Evaluate(between), DBL_MAX);
+  EXPECT_EQ(c.Field->Evaluate(inside), -DBL_MAX);
+  EXPECT_GT(c.Field->EvaluateCompressed(between), 700.0);
+  EXPECT_LT(c.Field->EvaluateCompressed(inside), -700.0);
+}
+
+TEST_P(FieldConformance, NormalAgreesWithFiniteDifferences)
+{
+  // The direction is compared with the difference quotient of EvaluateCompressed,
+  // sign(F)·ln(1 + |F|), whose gradient points along ∇F and stays in range where F
+  // does not; |∇F| with that of F where F is moderate.
+  const FieldCase& c = GetParam();
+  Random random(4);
+  const auto f = [&](const double* q) { return c.Field->Evaluate(q); };
+  const auto compressed = [&](const double* q) { return c.Field->EvaluateCompressed(q); };
+  const double h = 1e-6 * c.Scale;
+  int directions = 0, magnitudes = 0;
+  for (int n = 0; n < 2000; ++n)
+  {
+    const Point p = InRegion(random, c.Region);
+    double normal[3], norm;
+    int nearest;
+    c.Field->EvaluateVertex(p.data(), normal, norm, nearest);
+    const Point g = pisurf_test::FiniteDifferenceGradient(compressed, p.data(), h);
+    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    if (!(gn > 0.1) || !(norm > 0))
+    {
+      continue; // near a critical point the difference quotient says nothing
+    }
+    const double cosine = (g[0] * normal[0] + g[1] * normal[1] + g[2] * normal[2]) / gn;
+    ASSERT_GT(cosine, 1.0 - c.NormalTolerance) << c.Name << " at " << p[0] << " " << p[1] << " " << p[2];
+    ++directions;
+    // |∇F| where the difference quotient of F resolves it: rounding of F over 2h
+    // below 1e-7 of the gradient.
+    const double value = std::fabs(f(p.data()));
+    if (norm < 1e300 && value < 1e300 && 1e-16 * value < 1e-7 * h * norm)
+    {
+      const Point gf = pisurf_test::FiniteDifferenceGradient(f, p.data(), h);
+      const double gfn = std::sqrt(gf[0] * gf[0] + gf[1] * gf[1] + gf[2] * gf[2]);
+      ASSERT_TRUE(pisurf_test::RelativelyNear(norm, gfn, 1e-4)) << c.Name;
+      ++magnitudes;
+    }
+  }
+  EXPECT_GT(directions, 100) << c.Name;
+  if (c.InRange)
+  {
+    EXPECT_GT(magnitudes, 20) << c.Name;
+  }
+}
+
+TEST_P(FieldConformance, RootsBracketASignChange)
+{
+  const FieldCase& c = GetParam();
+  Random random(5);
+  const double tolerance = 1e-9 * c.Scale;
+  int refined = 0, first = 0;
+  for (int n = 0; n < 3000 && refined + first < 200; ++n)
+  {
+    const Point a = InRegion(random, c.Region);
+    Point b = a;
+    b[n % 3] += c.Scale * 0.05;
+    const double va = c.Field->Evaluate(a.data()), vb = c.Field->Evaluate(b.data());
+    const auto at = [&](double s) {
+      const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
+        a[2] + s * (b[2] - a[2]) };
+      return c.Field->Evaluate(q);
+    };
+    const double length = c.Scale * 0.05;
+    const double slack = 4.0 * tolerance / length;
+    if (Sign(va) * Sign(vb) < 0)
+    {
+      pisurf::Field::EdgeVertex vertex;
+      if (c.Field->RefineEdge(a.data(), b.data(), va, vb, -1, tolerance, vertex))
+      {
+        ASSERT_GE(vertex.S, 0.0);
+        ASSERT_LE(vertex.S, 1.0);
+        const double lo = std::max(0.0, vertex.S - slack), hi = std::min(1.0, vertex.S + slack);
+        ASSERT_LE(Sign(at(lo)) * Sign(at(hi)), 0) << c.Name << ": no sign change at S";
+        ++refined;
+      }
+    }
+    if (va > 0)
+    {
+      double s = 0.0;
+      if (c.Field->FirstRoot(a.data(), b.data(), tolerance, s))
+      {
+        for (int i = 0; i <= 64; ++i)
+        {
+          const double before = (s - slack) * i / 64.0;
+          if (before > 0)
+          {
+            ASSERT_GT(at(before), 0.0) << c.Name << ": F <= 0 before FirstRoot";
+          }
+        }
+        ASSERT_LE(Sign(at(std::max(0.0, s - slack))) * Sign(at(std::min(1.0, s + slack))), 0)
+          << c.Name << ": no sign change at FirstRoot";
+        ++first;
+      }
+    }
+  }
+  // Fields that answer neither keep the defaults, which say false: nothing to check.
+  SUCCEED() << refined << " edges refined, " << first << " first roots";
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryField, FieldConformance, ::testing::ValuesIn(AllFields()),
+  [](const ::testing::TestParamInfo<FieldCase>& info) {
+    std::string name = info.param.Name;
+    for (char& ch : name)
+    {
+      if (!std::isalnum(static_cast<unsigned char>(ch)))
+      {
+        ch = '_';
+      }
+    }
+    return name;
+  });
+}
