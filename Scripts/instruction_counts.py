@@ -1,0 +1,81 @@
+"""Instructions (valgrind's callgrind) of the mesher and the ray caster on the cup,
+the table and ten spheres: a measure of the code's work that, unlike time, does not
+depend on what else the machine runs. Compare two builds with it:
+
+    python3 Scripts/instruction_counts.py build/lib/python [other/build/lib/python]
+
+Each workload runs in its own process on one thread; the count of the same process
+doing nothing but the set-up is subtracted. Needs valgrind.
+"""
+import os
+import re
+import subprocess
+import sys
+
+MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Testing", "Data",
+                      "Models")
+
+WORKLOAD = r"""
+import sys
+from pisurfaces import vtkPiSurface, vtkPiPrimitive, vtkPiFlyingEdges, vtkPiRayCaster
+kind, model = sys.argv[1], sys.argv[2]
+s = vtkPiSurface()
+if model == "10_spheres":
+    keep = []
+    for i in range(10):
+        p = vtkPiPrimitive()
+        p.SetCenter(1.2 * (i % 5) - 2.4, 1.2 * (i // 5) - 0.6, 0.1 * i)
+        p.SetRadius(0.8)
+        s.AddFactor(p)
+        keep.append(p)
+    s.SetBlending(0.5)
+else:
+    assert s.LoadModel(sys.argv[3] + "/" + model + ".pisurf")
+if kind == "mesh":
+    a = vtkPiFlyingEdges()
+    a.SetPiSurface(s)
+    a.SetResolution(200)
+elif kind == "cast":
+    a = vtkPiRayCaster()
+    a.SetPiSurface(s)
+    a.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
+    a.SetResolution(384, 384)
+if kind != "none":
+    a.Update()
+"""
+
+
+def count(python_dir, kind, model):
+    env = dict(os.environ, PYTHONPATH=python_dir, VTK_SMP_MAX_THREADS="1")
+    out = subprocess.run(
+        ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", "/usr/bin/python3",
+         "-c", WORKLOAD, kind, model, MODELS], env=env, capture_output=True, text=True,
+        check=True).stderr
+    match = re.search(r"Collected : (\d+)", out)
+    if not match:
+        raise RuntimeError("callgrind gave no count:\n" + out)
+    return int(match.group(1))
+
+
+def main():
+    builds = sys.argv[1:]
+    if not builds:
+        sys.exit(__doc__)
+    rows = [(kind, model) for kind in ("mesh", "cast") for model in ("cup_a1.0", "table",
+                                                                        "10_spheres")]
+    header = "| workload | " + " | ".join("build %d (M instr.)" % (i + 1)
+                                         for i in range(len(builds)))
+    print(header + (" | change |" if len(builds) == 2 else " |"))
+    print("|---" * (len(builds) + 1 + (len(builds) == 2)) + "|")
+    for kind, model in rows:
+        counts = []
+        for build in builds:
+            idle = count(build, "none", model)
+            counts.append(count(build, kind, model) - idle)
+        line = "| %s %s | " % (kind, model) + " | ".join("%.1f" % (c / 1e6) for c in counts)
+        if len(builds) == 2:
+            line += " | %+.2f %%" % (100.0 * (counts[1] - counts[0]) / counts[0])
+        print(line + " |")
+
+
+main()
