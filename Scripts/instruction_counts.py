@@ -5,7 +5,9 @@ depend on what else the machine runs. Compare two builds with it:
     python3 Scripts/instruction_counts.py build/lib/python [other/build/lib/python]
 
 Each workload runs in its own process on one thread; the count of the same process
-doing nothing but the set-up is subtracted. Needs valgrind.
+doing nothing but the set-up is subtracted (for the triangulation, the set-up includes
+its input: the six axis views cast at 128²). PISURF_COUNT_KINDS chooses the workloads
+(default "mesh cast triangulate"). Needs valgrind.
 """
 import os
 import re
@@ -17,7 +19,8 @@ MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Testing
 
 WORKLOAD = r"""
 import sys
-from pisurfaces import vtkPiSurface, vtkPiPrimitive, vtkPiFlyingEdges, vtkPiRayCaster
+from pisurfaces import (vtkPiSurface, vtkPiPrimitive, vtkPiFlyingEdges, vtkPiRayCaster,
+                        vtkPiImageTriangulator)
 kind, model = sys.argv[1], sys.argv[2]
 s = vtkPiSurface()
 if model == "10_spheres":
@@ -31,16 +34,30 @@ if model == "10_spheres":
     s.SetBlending(0.5)
 else:
     assert s.LoadModel(sys.argv[3] + "/" + model + ".pisurf")
+
+
+def six_views(resolution):
+    c = vtkPiRayCaster()
+    c.SetPiSurface(s)
+    c.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
+    c.SetResolution(resolution, resolution)
+    return c
+
+
+a = None
 if kind == "mesh":
     a = vtkPiFlyingEdges()
     a.SetPiSurface(s)
     a.SetResolution(200)
 elif kind == "cast":
-    a = vtkPiRayCaster()
-    a.SetPiSurface(s)
-    a.SetViewMode(vtkPiRayCaster.SIX_AXIS_VIEWS)
-    a.SetResolution(384, 384)
-if kind != "none":
+    a = six_views(384)
+elif kind.endswith("triangulate"):
+    c = six_views(128)
+    c.Update()
+    if kind == "triangulate":
+        a = vtkPiImageTriangulator()
+        a.SetInputData(c.GetOutput())
+if a is not None:
     a.Update()
 """
 
@@ -61,8 +78,8 @@ def main():
     builds = sys.argv[1:]
     if not builds:
         sys.exit(__doc__)
-    rows = [(kind, model) for kind in ("mesh", "cast") for model in ("cup_a1.0", "table",
-                                                                        "10_spheres")]
+    kinds = os.environ.get("PISURF_COUNT_KINDS", "mesh cast triangulate").split()
+    rows = [(kind, model) for kind in kinds for model in ("cup_a1.0", "table", "10_spheres")]
     header = "| workload | " + " | ".join("build %d (M instr.)" % (i + 1)
                                          for i in range(len(builds)))
     print(header + (" | change |" if len(builds) == 2 else " |"))
@@ -70,7 +87,7 @@ def main():
     for kind, model in rows:
         counts = []
         for build in builds:
-            idle = count(build, "none", model)
+            idle = count(build, "none_triangulate" if kind == "triangulate" else "none", model)
             counts.append(count(build, kind, model) - idle)
         line = "| %s %s | " % (kind, model) + " | ".join("%.1f" % (c / 1e6) for c in counts)
         if len(builds) == 2:
