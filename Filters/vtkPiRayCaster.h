@@ -120,18 +120,12 @@
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <vector> // for std::vector
 
-class vtkFloatArray;
-class vtkImageData;
 class vtkPiSurface;
-class vtkUnsignedCharArray;
 #ifndef __VTK_WRAP__
-namespace vtkPiRayCasterDetail
+namespace pisurf
 {
-struct View;
-struct Hit;
-struct HitRows;
+struct RayHitRows;
 }
 #endif
 
@@ -250,17 +244,10 @@ protected:
 
 private:
 #ifndef __VTK_WRAP__
-  // Output port 1: the shaded first hits and their depth, one slice per view, from the
-  // point arrays of the hits (all of them, also those of rows beyond the piece), which
-  // lie row after row: image row r (view by view) holds hits rowOffsets[r] to
-  // rowOffsets[r + 1] − 1.
-  void Shade(const std::vector<vtkPiRayCasterDetail::View>& views, int rowBegin, int rowEnd,
-    const vtkIdType* rowOffsets, const double* depth, const int* pixel, const int* hitIndex,
-    vtkFloatArray* normals, vtkUnsignedCharArray* singular, vtkImageData* image);
   // Per image row: its hits, kept (emptied, not freed) from one execution to the next,
   // so that casting again does not fault that memory in again (up to 256 MiB of them;
   // a larger cast releases them).
-  vtkPiRayCasterDetail::HitRows* Rows;
+  pisurf::RayHitRows* Rows;
 #endif
   vtkPiRayCaster(const vtkPiRayCaster&) = delete;
   void operator=(const vtkPiRayCaster&) = delete;

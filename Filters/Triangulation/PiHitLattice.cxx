@@ -57,7 +57,6 @@ bool HitLattice::Run(PiPassTimer& lap)
 
 void HitLattice::FillLines()
 {
-  const Lattice& L = this->L;
   const vtkIdType lines = this->LineCount;
   this->First.reset(new std::atomic<vtkIdType>[lines + 1]);
   auto& first = this->First;
@@ -113,7 +112,6 @@ void HitLattice::FindHiddenParts()
 // (pisurf::RayGrid) instead of a trivariate restriction per line.
 void HitLattice::PrepareGrids()
 {
-  const Lattice& L = this->L;
   auto& grids = this->Grids;
   if (T.Kernel && T.Kernel->IsPolynomial())
   {
@@ -135,7 +133,6 @@ void HitLattice::PrepareGrids()
 
 void HitLattice::CastHidden(vtkIdType begin, vtkIdType end)
 {
-  const Lattice& L = this->L;
   const double tol = this->Tol;
   const auto& samples = this->Samples;
   const auto& first = this->First;
@@ -290,7 +287,6 @@ void HitLattice::GatherHidden()
 
 void HitLattice::MergeLines(vtkIdType lb, vtkIdType le)
 {
-  const Lattice& L = this->L;
   const double tol = this->Tol;
   const auto& samples = this->Samples;
   const auto& first = this->First;
