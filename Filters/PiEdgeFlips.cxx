@@ -15,6 +15,9 @@
 #include <utility>
 #include <vector>
 
+namespace pisurf
+{
+
 namespace
 {
 using pisurf::Buffer;
@@ -48,7 +51,7 @@ public:
 private:
   double Bend(Id p, Id q) const
   {
-    return PiBend(this->X + 3 * p, this->Normal + 3 * p, this->X + 3 * q, this->Normal + 3 * q);
+    return pisurf::Bend(this->X + 3 * p, this->Normal + 3 * p, this->X + 3 * q, this->Normal + 3 * q);
   }
   // (b − a)×(c − a)
   void Cross(Id a, Id b, Id c, double out[3]) const
@@ -270,7 +273,7 @@ vtkIdType FlipMesh<Id, Conn>::Build()
     }
   };
   std::vector<Id> start(n + 1, 0);
-  PiFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+  ParallelFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
       forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id) { ++start[low + 1]; });
@@ -282,7 +285,7 @@ vtkIdType FlipMesh<Id, Conn>::Build()
   }
   // (not initialized on allocation: the fill below writes every one)
   std::unique_ptr<Id[]> entries(new Id[h3]);
-  PiFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
+  ParallelFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType part = b; part < e; ++part)
     {
       const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
@@ -351,7 +354,7 @@ template <typename Id, typename Conn>
 vtkIdType FlipMesh<Id, Conn>::Round()
 {
   const Id h3 = 3 * this->T;
-  PiPassTimer lap("PiFlipEdgesToCurvature");
+  PassTimer lap("PiFlipEdgesToCurvature");
   // The gain of every edge, written by its lower half-edge into both. After the first
   // round only the edges of the triangles flipped last round change (a gain depends on
   // the edge's two triangles only); an edge between two of them is computed by its
@@ -476,12 +479,12 @@ vtkIdType FlipMesh<Id, Conn>::Round()
 }
 
 template <typename Id, typename Conn>
-PiEdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
+EdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
   const double* xyz, const float* normals, int rounds)
 {
-  PiEdgeFlipResult result;
+  EdgeFlipResult result;
   FlipMesh<Id, Conn> mesh(connectivity, triangles, points, xyz, normals);
-  PiPassTimer lap("PiFlipEdgesToCurvature");
+  PassTimer lap("PiFlipEdgesToCurvature");
   result.BoundaryEdges = mesh.Build();
   lap("build");
   for (int r = 0; r < rounds; ++r)
@@ -499,29 +502,30 @@ PiEdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
 
 }
 
-bool PiFitsInt32Cells(vtkIdType triangles, vtkIdType points)
+bool FitsInt32Cells(vtkIdType triangles, vtkIdType points)
 {
   return 3 * triangles < std::numeric_limits<std::int32_t>::max() &&
     points < std::numeric_limits<std::int32_t>::max();
 }
 
-PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
+EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds)
 {
   // 32-bit half-edge ids when they fit: half the memory traffic.
-  if (PiFitsInt32Cells(triangles, points))
+  if (FitsInt32Cells(triangles, points))
   {
     return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
   }
   return Run<std::int64_t>(connectivity, triangles, points, xyz, normals, rounds);
 }
 
-PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
+EdgeFlipResult FlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds)
 {
-  if (PiFitsInt32Cells(triangles, points))
+  if (FitsInt32Cells(triangles, points))
   {
     return Run<std::int32_t>(connectivity, triangles, points, xyz, normals, rounds);
   }
   return Run<std::int64_t>(connectivity, triangles, points, xyz, normals, rounds);
+}
 }

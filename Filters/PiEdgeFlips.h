@@ -30,10 +30,13 @@
 
 #include <cmath>
 
+namespace pisurf
+{
+
 /// |(n_p − n_q)·(q − p)| for points p, q with unit normals np, nq: about 8 times the
 /// surface's deviation from the chord p–q (see above). The measure of the triangulator's
 /// choice of diagonals and of the flips.
-inline double PiBend(const double* p, const float* np, const double* q, const float* nq)
+inline double Bend(const double* p, const float* np, const double* q, const float* nq)
 {
   double s = 0;
   for (int k = 0; k < 3; ++k)
@@ -43,7 +46,7 @@ inline double PiBend(const double* p, const float* np, const double* q, const fl
   return std::fabs(s);
 }
 
-struct PiEdgeFlipResult
+struct EdgeFlipResult
 {
   vtkIdType BoundaryEdges = 0; ///< edges used by one triangle
   vtkIdType Flips = 0;         ///< edges flipped, all rounds together
@@ -54,14 +57,16 @@ struct PiEdgeFlipResult
 /// points), then makes up to `rounds` rounds of flips, rewriting `connectivity` in
 /// place. `xyz`: the points (3 doubles each); `normals`: unit normals (3 floats each).
 /// Threaded with vtkSMPTools; the result does not depend on the number of threads.
-PiEdgeFlipResult PiFlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
+EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds);
 /// True when `triangles` triangles on `points` points fit vtkCellArray's 32-bit
 /// storage (every id and the connectivity's length below 2^31 − 1): the filters then
 /// store their cells in it, for half the memory.
-bool PiFitsInt32Cells(vtkIdType triangles, vtkIdType points);
+bool FitsInt32Cells(vtkIdType triangles, vtkIdType points);
 /// The same on 32-bit connectivity (vtkCellArray's 32-bit storage).
-PiEdgeFlipResult PiFlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
+EdgeFlipResult FlipEdgesToCurvature(std::int32_t* connectivity, vtkIdType triangles,
   vtkIdType points, const double* xyz, const float* normals, int rounds);
+
+}
 
 #endif

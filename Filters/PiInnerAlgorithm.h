@@ -15,10 +15,13 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 
-class PiForwardProgress : public vtkCommand
+namespace pisurf
+{
+
+class ForwardProgress : public vtkCommand
 {
 public:
-  static PiForwardProgress* New() { return new PiForwardProgress; }
+  static ForwardProgress* New() { return new ForwardProgress; }
   void Execute(vtkObject*, unsigned long, void* data) override
   {
     this->Outer->UpdateProgress(this->Start + this->Span * *static_cast<double*>(data));
@@ -29,14 +32,16 @@ public:
 
 /// `inner` works for `outer`: its progress p is reported as outer's start + span·p and it
 /// stops when outer is cancelled. (The observer lives as long as `inner`.)
-inline void PiWorkFor(vtkAlgorithm* inner, vtkAlgorithm* outer, double start, double span)
+inline void WorkFor(vtkAlgorithm* inner, vtkAlgorithm* outer, double start, double span)
 {
-  vtkNew<PiForwardProgress> forward;
+  vtkNew<ForwardProgress> forward;
   forward->Outer = outer;
   forward->Start = start;
   forward->Span = span;
   inner->AddObserver(vtkCommand::ProgressEvent, forward);
   inner->SetContainerAlgorithm(outer);
+}
+
 }
 
 #endif

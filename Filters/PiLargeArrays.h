@@ -20,11 +20,14 @@
 #include "vtkPoints.h"
 #include "vtkType.h"
 
+namespace pisurf
+{
+
 /// Sizes `array` (a vtkAOSDataArrayTemplate with its components set) to `tuples`
 /// uninitialized tuples. Where the memory cannot be had, VTK's own allocation (and its
 /// error) decides.
 template <typename ArrayT>
-void PiAllocateLarge(ArrayT* array, vtkIdType tuples)
+void AllocateLargeArray(ArrayT* array, vtkIdType tuples)
 {
   using Value = typename ArrayT::ValueType;
   const vtkIdType values = tuples * array->GetNumberOfComponents();
@@ -41,12 +44,14 @@ void PiAllocateLarge(ArrayT* array, vtkIdType tuples)
 }
 
 /// Gives `points` `count` uninitialized double-precision points in that memory.
-inline void PiAllocateLargePoints(vtkPoints* points, vtkIdType count)
+inline void AllocateLargePoints(vtkPoints* points, vtkIdType count)
 {
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  PiAllocateLarge(coordinates.GetPointer(), count);
+  AllocateLargeArray(coordinates.GetPointer(), count);
   points->SetData(coordinates);
+}
+
 }
 
 #endif

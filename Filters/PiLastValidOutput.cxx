@@ -8,7 +8,10 @@
 #include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-int PiLastValidOutput::Process(vtkInformation* request, bool keep,
+namespace pisurf
+{
+
+int LastValidOutput::Process(vtkInformation* request, bool keep,
   vtkInformationVector* outputs, const std::function<int()>& process)
 {
   if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -24,7 +27,7 @@ int PiLastValidOutput::Process(vtkInformation* request, bool keep,
   }
   const bool failed = this->Failed || result == 0;
 
-  const PiPiece asked = PiPieceOf(outputs->GetInformationObject(0));
+  const pisurf::Piece asked = PieceOf(outputs->GetInformationObject(0));
   const int piece = asked.Piece, pieces = asked.Pieces;
   const int n = outputs->GetNumberOfInformationObjects();
   if (!failed)
@@ -65,8 +68,9 @@ int PiLastValidOutput::Process(vtkInformation* request, bool keep,
   return 1;
 }
 
-void PiLastValidOutput::Clear()
+void LastValidOutput::Clear()
 {
   this->Outputs.clear();
   this->Piece = this->Pieces = -1;
+}
 }

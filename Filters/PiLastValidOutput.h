@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file PiLastValidOutput.h
+ * @file LastValidOutput.h
  * @brief keeps a source's last valid output through a bad setting
  *
  * ParaView's Pi Surface, Pi Product and Pi Primitive refuse an invalid value (a negative
@@ -23,7 +23,10 @@ class vtkDataObject;
 class vtkInformation;
 class vtkInformationVector;
 
-class PiLastValidOutput
+namespace pisurf
+{
+
+class LastValidOutput
 {
 public:
   /// The algorithm's ProcessRequest: `process` (the superclass's) for `request`, through
@@ -44,5 +47,7 @@ private:
   int Piece = -1, Pieces = -1;
   bool Failed = false; // set by Fail() during the current pass
 };
+
+}
 
 #endif

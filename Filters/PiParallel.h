@@ -3,7 +3,7 @@
  * @file PiParallel.h
  * @brief vtkSMPTools::For with one task per thread, the chunks claimed from a counter
  *
- * `PiFor(first, last, grain, f)` calls f(begin, end) on the chunks [first + c·grain,
+ * `ParallelFor(first, last, grain, f)` calls f(begin, end) on the chunks [first + c·grain,
  * first + (c + 1)·grain) ∩ [first, last), each exactly once, like
  * `vtkSMPTools::For(first, last, grain, f)`, but hands vtkSMPTools only one task per
  * thread: each task claims chunks in increasing order from a shared atomic counter until
@@ -13,10 +13,10 @@
  * std::function behind a mutex and a condition variable. On this 2-core machine that
  * costs about 0.6 µs per chunk (681 chunks of 8 blocks: 0.51 ms for a loop that takes
  * 0.12 ms as two tasks), which the mesher's passes paid several times per execution.
- * With the Sequential backend (one thread) PiFor is vtkSMPTools::For itself.
+ * With the Sequential backend (one thread) ParallelFor is vtkSMPTools::For itself.
  *
  * The functor keeps everything vtkSMPTools gives it: it runs on vtkSMPTools' threads,
- * so `PiSingleThread()` (below) is true on exactly one of them (progress and cancel
+ * so `SingleThread()` (below) is true on exactly one of them (progress and cancel
  * checks), and nested calls run serially as vtkSMPTools runs them. It must not
  * need per-thread Initialize/Reduce (no PiSurfaces functor has them).
  */
@@ -28,6 +28,9 @@
 #include <algorithm>
 #include <atomic>
 
+namespace pisurf
+{
+
 /// `vtkSMPTools::GetSingleThread()`, also where a loop runs serially. ParaView 5.11's
 /// STDThread backend answers it from a stack of thread ids that only its parallel loops
 /// push: in a loop it runs serially on the calling thread (a range no longer than the
@@ -35,13 +38,13 @@
 /// crashed on it). Outside a parallel scope the calling thread is the only one, so it
 /// is the single thread. The functors use this to decide which thread reports progress
 /// and checks for a cancel.
-inline bool PiSingleThread()
+inline bool SingleThread()
 {
   return !vtkSMPTools::IsParallelScope() || vtkSMPTools::GetSingleThread();
 }
 
 template <class Functor>
-void PiFor(vtkIdType first, vtkIdType last, vtkIdType grain, Functor&& f)
+void ParallelFor(vtkIdType first, vtkIdType last, vtkIdType grain, Functor&& f)
 {
   const vtkIdType n = last - first;
   if (n <= 0)
@@ -66,6 +69,8 @@ void PiFor(vtkIdType first, vtkIdType last, vtkIdType grain, Functor&& f)
       f(begin, std::min(last, begin + size));
     }
   });
+}
+
 }
 
 #endif

@@ -17,16 +17,19 @@
 
 #include <algorithm>
 
-struct PiPiece
+namespace pisurf
+{
+
+struct Piece
 {
   int Piece = 0;
   int Pieces = 1;
 };
 
 /// The piece an output information asks for (piece 0 of 1 when it asks for none).
-inline PiPiece PiPieceOf(vtkInformation* info)
+inline Piece PieceOf(vtkInformation* info)
 {
-  PiPiece p;
+  Piece p;
   if (info && info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()))
   {
     p.Piece = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
@@ -40,7 +43,7 @@ inline PiPiece PiPieceOf(vtkInformation* info)
 
 /// Asks the first connection of an input port for all of its data (piece 0 of 1, no
 /// ghost levels), whatever piece this algorithm produces.
-inline void PiRequestWholeInput(vtkInformationVector* port)
+inline void RequestWholeInput(vtkInformationVector* port)
 {
   if (vtkInformation* in = port ? port->GetInformationObject(0) : nullptr)
   {
@@ -48,6 +51,8 @@ inline void PiRequestWholeInput(vtkInformationVector* port)
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
     in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
+}
+
 }
 
 #endif

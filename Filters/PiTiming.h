@@ -3,7 +3,7 @@
  * @file PiTiming.h
  * @brief PISURF_TIMING=1: the time of each pass of an algorithm on stderr
  *
- * `PiPassTimer lap("vtkPiFlyingEdges");` then `lap("classify");` after each pass prints
+ * `PassTimer lap("vtkPiFlyingEdges");` then `lap("classify");` after each pass prints
  * "vtkPiFlyingEdges classify: 0.0123 s" (wall time) when the environment variable
  * PISURF_TIMING is set, and nothing otherwise. Where the system has getrusage, a lap
  * also gives the CPU time of all threads and the page faults (first touches of fresh
@@ -18,13 +18,16 @@
 #include <iostream>
 #if defined(__unix__) || defined(__APPLE__)
 #include <sys/resource.h>
+
+namespace pisurf
+{
 #define PI_TIMING_RUSAGE 1
 #endif
 
-class PiPassTimer
+class PassTimer
 {
 public:
-  explicit PiPassTimer(const char* owner)
+  explicit PassTimer(const char* owner)
     : Owner(owner)
     , Enabled(std::getenv("PISURF_TIMING") != nullptr)
   {
@@ -98,5 +101,7 @@ private:
   double LastCpu = 0;
   long LastFaults = 0;
 };
+
+}
 
 #endif

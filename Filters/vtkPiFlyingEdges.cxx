@@ -10,7 +10,7 @@
 #include "Meshing/PiMeshingDriver.h"
 #include "Meshing/PiMeshingWork.h"
 #include "PiModel.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "vtkPiSurface.h"
 
 #include "vtkAppendPolyData.h"
@@ -55,7 +55,7 @@ void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
 }
 
 vtkPiFlyingEdges::vtkPiFlyingEdges()
-  : LastValid(new PiLastValidOutput)
+  : LastValid(new pisurf::LastValidOutput)
   , Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(0);
@@ -183,11 +183,11 @@ int vtkPiFlyingEdges::RequestData(
 int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
 {
   // PISURF_TIMING=1: the wall time of each pass on stderr.
-  PiPassTimer lap("vtkPiFlyingEdges");
+  pisurf::PassTimer lap("vtkPiFlyingEdges");
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const PiPiece request = PiPieceOf(outInfo);
+  const pisurf::Piece request = pisurf::PieceOf(outInfo);
   const int piece = request.Piece, pieces = request.Pieces;
   const std::shared_ptr<const pisurf::Field> field = this->Internals->Field;
   std::shared_ptr<const pisurf::ProductKernel> kernel;

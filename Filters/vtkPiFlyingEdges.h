@@ -133,7 +133,10 @@ class Field;
 }
 #endif
 
-class PiLastValidOutput;
+namespace pisurf
+{
+class LastValidOutput;
+}
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiFlyingEdges : public vtkPolyDataAlgorithm
 {
@@ -286,7 +289,7 @@ protected:
   int LastResolution = 0;
 
   bool KeepLastValidOutput = false;
-  std::unique_ptr<PiLastValidOutput> LastValid;
+  std::unique_ptr<pisurf::LastValidOutput> LastValid;
 
 private:
   vtkPiFlyingEdges(const vtkPiFlyingEdges&) = delete;

@@ -47,7 +47,7 @@ int vtkPiImageTriangulator::RequestUpdateExtent(
 {
   // The views are merged and their seams closed across the whole lattice: every piece
   // triangulates the whole cloud (piece 0 of 1 of the input) and keeps its share.
-  PiRequestWholeInput(inputVector[0]);
+  pisurf::RequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -56,7 +56,7 @@ int vtkPiImageTriangulator::RequestData(
 {
   using namespace pisurf::triangulator;
   // PISURF_TIMING=1: the wall time of each pass on stderr.
-  PiPassTimer lap("vtkPiImageTriangulator");
+  pisurf::PassTimer lap("vtkPiImageTriangulator");
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   Triangulation T;
@@ -120,7 +120,7 @@ int vtkPiImageTriangulator::RequestData(
   output->GetPointData()->AddArray(mesh.Factor);
   if (in.Molecule.Present)
   {
-    PiMoleculeInput::Forward(input, output);
+    pisurf::MoleculeInput::Forward(input, output);
   }
   else if (in.Json)
   {
@@ -135,7 +135,7 @@ int vtkPiImageTriangulator::RequestData(
   unused->InsertNextValue(T.C.N - mesh.UsedHits);
   output->GetFieldData()->AddArray(unused);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const PiPiece request = PiPieceOf(outInfo);
+  const pisurf::Piece request = pisurf::PieceOf(outInfo);
   const int piece = request.Piece, pieces = request.Pieces;
   if (pieces > 1)
   {

@@ -6,7 +6,7 @@
 #include "PiTiming.h"
 
 #include "PiModel.h"
-#include "PiMolecule.h"
+#include "PiMoleculeField.h"
 #include "vtkPiFlyingEdges.h"
 
 #include "vtkCallbackCommand.h"
@@ -82,7 +82,7 @@ int vtkPiMoleculeSurface::RequestUpdateExtent(
   // molecule's): ask for the whole input. Readers that do not split molecules (this
   // plugin's, VTK's CML and XYZ readers, ParaView's PDB reader) give only their first
   // piece a molecule, so each rank asks for that one.
-  PiRequestWholeInput(inputVector[0]);
+  pisurf::RequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -170,11 +170,11 @@ int vtkPiMoleculeSurface::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // PISURF_TIMING=1: the wall time of each pass on stderr.
-  PiPassTimer lap("vtkPiMoleculeSurface");
+  pisurf::PassTimer lap("vtkPiMoleculeSurface");
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const PiPiece request = PiPieceOf(outInfo);
+  const pisurf::Piece request = pisurf::PieceOf(outInfo);
   const int piece = request.Piece, pieces = request.Pieces;
   if (!std::isfinite(this->Blending) || this->Blending < 0)
   {
@@ -499,7 +499,7 @@ int vtkPiMoleculeSurface::RequestData(
   mesher->AddObserver(vtkCommand::WarningEvent, forward);
   // The mesher is most of the time: its progress is ours (from 0.05 to 0.95), and a
   // cancel of this filter (AbortExecute, ParaView's cancel button) stops it.
-  PiWorkFor(mesher, this, 0.05, 0.9);
+  pisurf::WorkFor(mesher, this, 0.05, 0.9);
   this->UpdateProgress(0.05);
   // Piece p of n: the mesher's slab p of the grid; the union of the pieces is the
   // one-piece mesh.
@@ -527,7 +527,7 @@ int vtkPiMoleculeSurface::RequestData(
   vtkNew<vtkIntArray> atomicNumber;
   atomicNumber->SetName("AtomicNumber");
   const vtkIdType points = output->GetNumberOfPoints();
-  PiAllocateLarge(atomicNumber.GetPointer(), points);
+  pisurf::AllocateLargeArray(atomicNumber.GetPointer(), points);
   int* numberOut = atomicNumber->GetPointer(0);
   const int* atomOf = factor ? factor->GetPointer(0) : nullptr;
   vtkSMPTools::For(0, points, [&](vtkIdType begin, vtkIdType end) {
@@ -555,7 +555,7 @@ int vtkPiMoleculeSurface::RequestData(
   fd->AddArray(centerArray);
   fd->AddArray(radiusOut);
   // With the mode, r, the influence radius and the bounds: Pi Ray Cast, Image Based
-  // Triangulation and Pi Sample Function rebuild the field from these (PiInputModel.h),
+  // Triangulation and Pi Sample Function rebuild the field from these (pisurf::InputSurface.h),
   // for any size and either mode.
   vtkNew<vtkDoubleArray> settingsOut;
   settingsOut->SetName("PiMoleculeSettings");

@@ -13,7 +13,7 @@
  *   and far atoms enter each 2 Å cell through a Taylor polynomial of their log-product
  *   with a rigorous error bound (the farthest ones through one expansion per 8 Å
  *   supercell); points where that bound could change the sign are evaluated exactly, so
- *   the surface is exact (see PiMolecule.h for the formulas). Vertices are certified in
+ *   the surface is exact (see PiMoleculeField.h for the formulas). Vertices are certified in
  *   one pass where the far atoms make the product huge off the spheres.
  * - Mode Local: F = Π g_i − r/(1 + r) with g_i = 1 + (f_i − 1)·w(u_i), a factor with the
  *   sign of f_i, C², equal to f_i inside the atom and to 1 beyond InfluenceRadius from

@@ -27,7 +27,7 @@ vtkPiPrimitiveSource::vtkPiPrimitiveSource()
   : Primitive(vtkPiPrimitive::New())
   , Surface(vtkPiSurface::New())
   , Mesher(vtkPiFlyingEdges::New())
-  , LastValid(new PiLastValidOutput)
+  , LastValid(new pisurf::LastValidOutput)
 {
   this->SetNumberOfInputPorts(0);
   this->Surface->AddFactor(this->Primitive);
@@ -294,7 +294,7 @@ int vtkPiPrimitiveSource::RequestData(
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const PiPiece request = PiPieceOf(outInfo);
+  const pisurf::Piece request = pisurf::PieceOf(outInfo);
   const int piece = request.Piece, pieces = request.Pieces;
   double bounds[6];
   std::string error;

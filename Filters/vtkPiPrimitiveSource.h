@@ -41,7 +41,10 @@ class vtkPiFlyingEdges;
 class vtkPiPrimitive;
 class vtkPiSurface;
 
-class PiLastValidOutput;
+namespace pisurf
+{
+class LastValidOutput;
+}
 
 class VTKPISURFACESFILTERS_EXPORT vtkPiPrimitiveSource : public vtkPolyDataAlgorithm
 {
@@ -152,7 +155,7 @@ protected:
   int Resolution = 64;
 
   bool KeepLastValidOutput = false;
-  std::unique_ptr<PiLastValidOutput> LastValid;
+  std::unique_ptr<pisurf::LastValidOutput> LastValid;
 
 private:
   vtkPiPrimitiveSource(const vtkPiPrimitiveSource&) = delete;

@@ -2,13 +2,13 @@
 #include "vtkPiRayCaster.h"
 #include "PiLargeArrays.h"
 #include "PiParallel.h"
-#include "PiInputModel.h"
+#include "PiInputSurface.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 
 #include "PiModel.h"
-#include "PiProduct.h"
-#include "PiRayCast.h"
+#include "PiProductKernel.h"
+#include "PiRayCaster.h"
 #include "RayCasting/PiRayHitAttributes.h"
 #include "RayCasting/PiRayImage.h"
 #include "RayCasting/PiRayPieceRows.h"
@@ -83,7 +83,7 @@ bool CheckSettings(const int resolution[2], double singularTolerance, std::strin
 }
 
 // The caster of a molecule's field (kept in `field`), else of the product.
-std::unique_ptr<pisurf::RayCaster> MakeCaster(const PiMoleculeInput& molecule,
+std::unique_ptr<pisurf::RayCaster> MakeCaster(const pisurf::MoleculeInput& molecule,
   const pisurf::ProductKernel* kernel, const double b[6],
   std::unique_ptr<pisurf::MoleculeField>& field, std::string& error)
 {
@@ -167,7 +167,7 @@ int vtkPiRayCaster::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // PISURF_TIMING=1: the time of each pass on stderr (PiTiming.h).
-  PiPassTimer lap("vtkPiRayCaster");
+  pisurf::PassTimer lap("vtkPiRayCaster");
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkImageData* image = vtkImageData::GetData(outputVector, 1);
 
@@ -175,13 +175,13 @@ int vtkPiRayCaster::RequestData(
   // input's model, or the one set.
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  PiInputSurface in;
+  pisurf::InputSurface in;
   if (!in.Read(input, this->PiSurface, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const PiMoleculeInput& molecule = in.Molecule;
+  const pisurf::MoleculeInput& molecule = in.Molecule;
   const vtkSmartPointer<vtkPiSurface>& surface = in.Surface;
   const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   // Orthographic row restriction and the empty-space octree: polynomial products only.

@@ -8,7 +8,7 @@
  * polynomial factor is an exact univariate polynomial, and the roots of
  * F(t) = Π p_i(t) − r are isolated by subdivision with Bernstein enclosures and a
  * monotonicity proof (short segments are first tried with the factors' centred forms;
- * see Filters/Core/PiRayRoots.h): no root is ever skipped, however
+ * see Filters/RayCasting/PiRayRoots.h): no root is ever skipped, however
  * thin the feature, to a tolerance of 1e-10 of the model size. Roots where F touches 0
  * without changing sign are reported and flagged `Tangent`. Factors that are not
  * polynomials fall back to a sign scan of 4096 samples per ray with bisection, which

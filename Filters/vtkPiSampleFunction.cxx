@@ -2,10 +2,10 @@
 #include "vtkPiSampleFunction.h"
 #include "PiLargeArrays.h"
 #include "PiParallel.h"
-#include "PiInputModel.h"
+#include "PiInputSurface.h"
 #include "PiPieces.h"
 
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "vtkPiSurface.h"
 
 #include "vtkDoubleArray.h"
@@ -78,7 +78,7 @@ int vtkPiSampleFunction::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // Only the input's model is used: any piece of it carries it; ask for the first.
-  PiRequestWholeInput(inputVector[0]);
+  pisurf::RequestWholeInput(inputVector[0]);
   return 1;
 }
 
@@ -93,13 +93,13 @@ int vtkPiSampleFunction::RequestData(
   // the input's model, or the one set.
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   std::string error;
-  PiInputSurface in;
+  pisurf::InputSurface in;
   if (!in.Read(input, this->PiSurface, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const PiMoleculeInput& molecule = in.Molecule;
+  const pisurf::MoleculeInput& molecule = in.Molecule;
   const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   const int* d = this->SampleDimensions;
   if (d[0] < 2 || d[1] < 2 || d[2] < 2)
@@ -149,7 +149,7 @@ int vtkPiSampleFunction::RequestData(
     output->GetPointData()->SetScalars(values);
     return 1; // an empty piece
   }
-  PiAllocateLarge(values.GetPointer(), vtkIdType(nx) * ny * nz);
+  pisurf::AllocateLargeArray(values.GetPointer(), vtkIdType(nx) * ny * nz);
   double* out = values->GetPointer(0);
 
   // One x row per work item: the factors restricted to it once, about the middle of the
@@ -170,7 +170,7 @@ int vtkPiSampleFunction::RequestData(
   const double mid = 0.5 * (d[0] - 1);
   std::atomic<bool> abort{ false };
   std::atomic<vtkIdType> done{ 0 };
-  PiFor(0, rows, 16, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, rows, 16, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end && !abort; ++r)
     {
       const int j = extent[2] + static_cast<int>(r % ny), k = extent[4] + static_cast<int>(r / ny);
@@ -197,7 +197,7 @@ int vtkPiSampleFunction::RequestData(
     }
     const vtkIdType finished = done += end - begin;
     // Progress and abort from the thread that may call into the pipeline.
-    if (PiSingleThread())
+    if (pisurf::SingleThread())
     {
       this->UpdateProgress(double(finished) / rows);
       if (this->CheckAbort())

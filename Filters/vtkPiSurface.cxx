@@ -2,7 +2,7 @@
 #include "vtkPiSurface.h"
 
 #include "PiModel.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiParallel.h"
 #include "vtkPiPrimitive.h"
 
@@ -462,7 +462,7 @@ void vtkPiSurface::EvaluateFunction(vtkDataArray* input, vtkDataArray* output)
     return;
   }
   // PASS 1: evaluate blocks of points, factor by factor.
-  PiFor(0, n, 1024, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, n, 1024, [&](vtkIdType begin, vtkIdType end) {
     std::vector<double> xyz(3 * (end - begin)), values(end - begin);
     for (vtkIdType i = begin; i < end; ++i)
     {

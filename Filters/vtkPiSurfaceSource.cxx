@@ -89,7 +89,7 @@ int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* primitives = vtkPolyData::GetData(outputVector, 1);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (PiPieceOf(outInfo).Piece > 0)
+  if (pisurf::PieceOf(outInfo).Piece > 0)
   {
     // The ray lattice is not split into pieces: the first piece holds the whole mesh.
     return 1;
@@ -119,8 +119,8 @@ int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
   triangulator->SetMergeMode(vtkPiImageTriangulator::RAY_LATTICE);
   // Their progress is ours (the casts from 0 to 0.5, the triangulation from 0.5 to 1),
   // and so is our cancel.
-  PiWorkFor(caster, this, 0.0, 0.5);
-  PiWorkFor(triangulator, this, 0.5, 0.5);
+  pisurf::WorkFor(caster, this, 0.0, 0.5);
+  pisurf::WorkFor(triangulator, this, 0.5, 0.5);
   caster->Update();
   if (this->CheckAbort())
   {

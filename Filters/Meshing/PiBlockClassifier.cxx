@@ -120,7 +120,7 @@ void BlockClassifier::ClassifyGroups(
     }
     return true;
   };
-  PiFor(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType q = begin; q < end; ++q)
     {
       const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
@@ -247,7 +247,7 @@ size_t BlockClassifier::Run(const MeshEvaluator& evaluator, BlockGrid& g, int cl
     }
     classify.Corners = corners.get();
   }
-  PiFor(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(undecided.size()), 16, classify);
   g.Slot.assign(g.Sign.size(), -1);
   // (The layer below the slab is classified, not sampled: its blocks are never active.)
   const size_t firstSampled = size_t(g.Count[0]) * g.Count[1] * sampleBegin;

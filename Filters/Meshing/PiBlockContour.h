@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // PASSES 5 and 6 of the mesher: marching cubes over the cells of the active blocks
 // from row bit masks of the signs, each crossing edge's vertex numbered by the block
-// that owns its lower end. A header: the functor runs per block inside PiFor, and its
+// that owns its lower end. A header: the functor runs per block inside pisurf::ParallelFor, and its
 // per-row and per-cell loops stay inlined there.
 #ifndef PiBlockContour_h
 #define PiBlockContour_h

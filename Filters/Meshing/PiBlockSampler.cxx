@@ -27,7 +27,7 @@ struct SampleBlocks
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const bool single = PiSingleThread();
+    const bool single = pisurf::SingleThread();
     const size_t n = this->Kernel ? this->Kernel->GetLineCoefficientCount() : 0;
     const double mid = 0.5 * (this->G->Dims[0] - 1);
     for (vtkIdType s = begin; s < end; ++s)
@@ -135,7 +135,7 @@ struct SampleRows
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    const bool single = PiSingleThread();
+    const bool single = pisurf::SingleThread();
     const size_t n = this->Kernel->GetLineCoefficientCount();
     const int* d = this->G->Dims;
     const double mid = 0.5 * (d[0] - 1);
@@ -255,13 +255,13 @@ void BlockSampler::Run(const ProductKernel* kernel, const Field* field, BlockGri
   {
     SampleRows sample{ kernel, &g, &rows.Rows, &rows.Coefficients, algorithm, &abort, {} };
     sample.Prepare();
-    PiFor(0, static_cast<vtkIdType>(rows.Rows.size()), 64, sample);
+    pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.Rows.size()), 64, sample);
   }
   else
   {
     SampleBlocks sample{ kernel, field, &g, &rows.RowIndex, &rows.Coefficients, algorithm,
       &abort };
-    PiFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
+    pisurf::ParallelFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
   }
 }
 }

@@ -8,7 +8,7 @@
 #include "PiBlockGrid.h"
 #include "PiBuffer.h"
 #include "PiField.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiRowRestriction.h"
 
 #include <atomic>

@@ -5,7 +5,7 @@
 #define PiMeshEvaluator_h
 
 #include "PiField.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 
 namespace pisurf
 {

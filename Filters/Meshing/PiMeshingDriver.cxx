@@ -25,7 +25,7 @@
 
 namespace pisurf
 {
-MeshingDriver::MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, PiPassTimer& lap)
+MeshingDriver::MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, pisurf::PassTimer& lap)
   : Algorithm(algorithm)
   , Work(work)
   , Lap(lap)
@@ -106,7 +106,7 @@ MeshingDriver::Result MeshingDriver::Sample()
   const ProductKernel* kernel = this->Evaluator->Kernel;
   const bool distributed = this->Exchange != nullptr;
   vtkAlgorithm* const algorithm = this->Algorithm;
-  PiPassTimer& lap = this->Lap;
+  pisurf::PassTimer& lap = this->Lap;
 
   // PASS 1: classify the blocks, coarse to fine.
   const size_t undecided = BlockClassifier::Run(*this->Evaluator, g, this->ClassifyBegin,
@@ -186,20 +186,20 @@ MeshingDriver::Result MeshingDriver::PlaceVertices(
   const vtkIdType vertices = triangles.GetNumberOfVertices();
   this->Vertices = vertices;
   vtkNew<vtkPoints> points;
-  PiAllocateLargePoints(points, vertices);
+  pisurf::AllocateLargePoints(points, vertices);
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  PiAllocateLarge(normals.GetPointer(), vertices);
+  pisurf::AllocateLargeArray(normals.GetPointer(), vertices);
   vtkNew<vtkIntArray> factor;
   factor->SetName("Factor");
-  PiAllocateLarge(factor.GetPointer(), vertices);
+  pisurf::AllocateLargeArray(factor.GetPointer(), vertices);
   vtkSmartPointer<vtkDoubleArray> gradientMagnitude;
   if (this->Options.ComputeGradientMagnitude)
   {
     gradientMagnitude = vtkSmartPointer<vtkDoubleArray>::New();
     gradientMagnitude->SetName("GradientMagnitude");
-    PiAllocateLarge(gradientMagnitude.GetPointer(), vertices);
+    pisurf::AllocateLargeArray(gradientMagnitude.GetPointer(), vertices);
   }
   const VertexAttributes attributes{ this->Evaluator, this->G, &this->Work.VertexEdge,
     &this->Work.VertexT, &this->Work.VertexEnds, vertices, &this->Work.Rows,

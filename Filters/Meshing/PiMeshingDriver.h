@@ -13,7 +13,10 @@
 #include <atomic>
 #include <memory>
 
-class PiPassTimer;
+namespace pisurf
+{
+class PassTimer;
+}
 class vtkAlgorithm;
 class vtkPolyData;
 
@@ -43,7 +46,7 @@ public:
 
   /// `algorithm` gets the progress, the errors and the cancel checks; `work` holds the
   /// buffers kept between executions; `lap` times the passes.
-  MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, PiPassTimer& lap);
+  MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, pisurf::PassTimer& lap);
   ~MeshingDriver();
 
   /// Meshes `evaluator` on g (Dims, Origin, Spacing and Count set) for piece `piece` of
@@ -68,7 +71,7 @@ private:
 
   vtkAlgorithm* Algorithm;
   MeshingWork& Work;
-  PiPassTimer& Lap;
+  pisurf::PassTimer& Lap;
   const MeshEvaluator* Evaluator = nullptr;
   BlockGrid* G = nullptr;
   Settings Options{};

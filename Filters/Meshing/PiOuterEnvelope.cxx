@@ -59,7 +59,7 @@ int OutsideSign(const BlockGrid& g, const PieceSlab& slab, PieceExchange* exchan
 
 std::unique_ptr<OuterEnvelope> OuterEnvelope::Build(const BlockGrid& g, const PieceSlab& slab,
   const Field* field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
-  Buffer<std::uint16_t>& reached, PiPassTimer& lap)
+  Buffer<std::uint16_t>& reached, pisurf::PassTimer& lap)
 {
   const bool distributed = exchange != nullptr;
   const int slabBegin = slab.SlabBegin, slabEnd = slab.SlabEnd;
@@ -105,7 +105,7 @@ OuterEnvelope::OuterEnvelope(const BlockGrid& g, int outside, const pisurf::Fiel
   // block is in the component of its centre): those count as the other sign.
   char* blockState = this->BlockState.data();
   const BlockGrid* grid = &this->G;
-  PiFor(0, static_cast<vtkIdType>(g.Sign.size()), 0, [=](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(g.Sign.size()), 0, [=](vtkIdType begin, vtkIdType end) {
     for (vtkIdType b = begin; b < end; ++b)
     {
       if (grid->Sign[b] != outside)
@@ -132,7 +132,7 @@ OuterEnvelope::OuterEnvelope(const BlockGrid& g, int outside, const pisurf::Fiel
   // the outer side); points shared with a skipped block take that block's verdict.
   std::uint16_t* freeRows = this->Free.GetPointer();
   std::uint16_t* reachedRows = this->Reached.GetPointer();
-  PiFor(0, static_cast<vtkIdType>(active), 0, [=](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(active), 0, [=](vtkIdType begin, vtkIdType end) {
     for (vtkIdType s = begin; s < end; ++s)
     {
       int c[3];
@@ -340,7 +340,7 @@ void OuterEnvelope::Run(std::vector<vtkIdType>& frontier)
     }
     OuterEnvelope* self = this;
     const std::vector<vtkIdType>* blocks = &frontier;
-    PiFor(0, static_cast<vtkIdType>(frontier.size()), 8,
+    pisurf::ParallelFor(0, static_cast<vtkIdType>(frontier.size()), 8,
       [self, blocks, &next](vtkIdType begin, vtkIdType end) {
         std::vector<vtkIdType>& stack = next.Local();
         Pusher push{ self, &stack };

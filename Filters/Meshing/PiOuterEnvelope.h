@@ -14,7 +14,10 @@
 #include <memory>
 #include <vector>
 
-class PiPassTimer;
+namespace pisurf
+{
+class PassTimer;
+}
 
 namespace pisurf
 {
@@ -39,7 +42,7 @@ public:
   /// the envelope's work arrays (kept between executions).
   static std::unique_ptr<OuterEnvelope> Build(const BlockGrid& g, const PieceSlab& slab,
     const Field* field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
-    Buffer<std::uint16_t>& reached, PiPassTimer& lap);
+    Buffer<std::uint16_t>& reached, pisurf::PassTimer& lap);
 
   // `field` (may be null) marks points of bounded positive components, which the flood
   // fill does not pass (see pisurf::Field::OffOuterSide).

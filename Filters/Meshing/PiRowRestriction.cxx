@@ -228,12 +228,12 @@ double RowRestriction::Restrict(const ProductKernel* kernel, const BlockGrid& g,
   if (caches.empty())
   {
     RestrictRows restrict{ kernel, &g, &rows, &coefficients };
-    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   else
   {
     RestrictCachedRows restrict{ &g, &rows, &caches, kernel, &coefficients };
-    PiFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
+    pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   return 0.0;
 }

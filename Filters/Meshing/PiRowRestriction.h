@@ -8,7 +8,7 @@
 
 #include "PiBlockGrid.h"
 #include "PiLargeArrays.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 
 #include <vector>
 

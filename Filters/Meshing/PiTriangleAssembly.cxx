@@ -16,7 +16,7 @@
 namespace pisurf
 {
 void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope,
-  const PieceSlab& slab, MeshingWork& work, PiPassTimer& lap)
+  const PieceSlab& slab, MeshingWork& work, pisurf::PassTimer& lap)
 {
   const int slabBegin = slab.SlabBegin, slabEnd = slab.SlabEnd;
   const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
@@ -48,7 +48,7 @@ void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope,
   contour.RowSigns = rowSigns.GetPointer();
   contour.EdgeMasks = edgeMasks.GetPointer();
   contour.EdgeOffsets = edgeOffsets.GetPointer();
-  PiFor(0, activeCount, 8, contour);
+  pisurf::ParallelFor(0, activeCount, 8, contour);
   vtkIdType vertices = 0, triangles = 0;
   if (lap.IsEnabled())
   {
@@ -77,22 +77,22 @@ void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope,
   vertexT.Reserve(vertices);
   vertexEnds.Reserve(2 * vertices);
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory).
-  const bool narrow = PiFitsInt32Cells(triangles, vertices);
+  const bool narrow = pisurf::FitsInt32Cells(triangles, vertices);
   vtkIdTypeArray* connectivity = this->Connectivity;
   vtkTypeInt32Array* connectivity32 = this->Connectivity32;
   if (narrow)
   {
-    PiAllocateLarge(connectivity32, 3 * triangles);
+    pisurf::AllocateLargeArray(connectivity32, 3 * triangles);
     contour.TriangleIds32 = connectivity32->GetPointer(0);
   }
   else
   {
-    PiAllocateLarge(connectivity, 3 * triangles);
+    pisurf::AllocateLargeArray(connectivity, 3 * triangles);
     contour.TriangleIds = connectivity->GetPointer(0);
   }
   // The vertices' edges and the triangles (which look up neighbours' Count tables).
   contour.Pass = BlockContour::Write;
-  PiFor(0, activeCount, 8, contour);
+  pisurf::ParallelFor(0, activeCount, 8, contour);
   this->Vertices = vertices;
   this->Triangles = triangles;
   this->Narrow = narrow;
@@ -160,7 +160,7 @@ vtkSmartPointer<vtkCellArray> TriangleAssembly::NewCells() const
   vtkNew<vtkCellArray> polys;
   auto fillOffsets = [triangles](auto* offset) {
     using Id = typename std::remove_pointer<decltype(offset)>::type;
-    PiFor(0, triangles + 1, 0, [offset](vtkIdType begin, vtkIdType end) {
+    pisurf::ParallelFor(0, triangles + 1, 0, [offset](vtkIdType begin, vtkIdType end) {
       for (vtkIdType t = begin; t < end; ++t)
       {
         offset[t] = static_cast<Id>(3 * t);
@@ -170,14 +170,14 @@ vtkSmartPointer<vtkCellArray> TriangleAssembly::NewCells() const
   if (narrow)
   {
     vtkNew<vtkTypeInt32Array> offsets;
-    PiAllocateLarge(offsets.GetPointer(), triangles + 1);
+    pisurf::AllocateLargeArray(offsets.GetPointer(), triangles + 1);
     fillOffsets(offsets->GetPointer(0));
     polys->SetData(offsets, connectivity32);
   }
   else
   {
     vtkNew<vtkIdTypeArray> offsets;
-    PiAllocateLarge(offsets.GetPointer(), triangles + 1);
+    pisurf::AllocateLargeArray(offsets.GetPointer(), triangles + 1);
     fillOffsets(offsets->GetPointer(0));
     polys->SetData(offsets, connectivity);
   }

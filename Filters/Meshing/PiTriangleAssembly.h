@@ -12,7 +12,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkTypeInt32Array.h"
 
-class PiPassTimer;
+namespace pisurf
+{
+class PassTimer;
+}
 class vtkCellArray;
 
 namespace pisurf
@@ -27,7 +30,7 @@ public:
   /// VertexT and VertexEnds, the triangles of slab's blocks into the connectivity. With
   /// several pieces only the vertices the piece's triangles use are kept.
   void Run(const BlockGrid& g, const OuterEnvelope* envelope, const PieceSlab& slab,
-    MeshingWork& work, PiPassTimer& lap);
+    MeshingWork& work, pisurf::PassTimer& lap);
 
   vtkIdType GetNumberOfVertices() const { return this->Vertices; }
 

@@ -723,7 +723,7 @@ struct VertexWorker
 
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    if (PiSingleThread())
+    if (pisurf::SingleThread())
     {
       if (this->Algorithm->CheckAbort())
       {
@@ -787,6 +787,6 @@ void VertexAttributes::Run() const
     this->Vertices, kernel ? &this->Rows->RowIndex : nullptr,
     kernel ? &this->Rows->Coefficients : nullptr, kernel ? kernel->GetLineCoefficientCount() : 0 };
   // Chunks of 4096 vertices: the main thread reports and checks for a cancel between them.
-  PiFor(0, this->Vertices, 4096, worker);
+  pisurf::ParallelFor(0, this->Vertices, 4096, worker);
 }
 }

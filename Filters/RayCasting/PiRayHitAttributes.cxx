@@ -4,7 +4,7 @@
 
 #include "PiLargeArrays.h"
 #include "PiParallel.h"
-#include "PiRayCast.h"
+#include "PiRayCaster.h"
 
 #include <algorithm>
 
@@ -20,27 +20,27 @@ void RayHitAttributes::Compute(const std::vector<std::vector<RayHit>>& rows, Ray
     this->RowOffsets[r + 1] = this->RowOffsets[r] + static_cast<vtkIdType>(rows[r].size());
   }
   const vtkIdType n = this->RowOffsets.back();
-  PiAllocateLargePoints(this->Points, n);
+  pisurf::AllocateLargePoints(this->Points, n);
   this->Normals->SetName("Normals");
   this->Normals->SetNumberOfComponents(3);
-  PiAllocateLarge(this->Normals.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Normals.GetPointer(), n);
   this->Gradient->SetName("GradientMagnitude");
-  PiAllocateLarge(this->Gradient.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Gradient.GetPointer(), n);
   this->Depth->SetName("Depth");
-  PiAllocateLarge(this->Depth.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Depth.GetPointer(), n);
   this->Pixel->SetName("PixelIndex");
   this->Pixel->SetNumberOfComponents(2);
-  PiAllocateLarge(this->Pixel.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Pixel.GetPointer(), n);
   this->ViewIndex->SetName("ViewIndex");
-  PiAllocateLarge(this->ViewIndex.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->ViewIndex.GetPointer(), n);
   this->HitIndex->SetName("HitIndex");
-  PiAllocateLarge(this->HitIndex.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->HitIndex.GetPointer(), n);
   this->Singular->SetName("Singular");
-  PiAllocateLarge(this->Singular.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Singular.GetPointer(), n);
   this->Tangent->SetName("Tangent");
-  PiAllocateLarge(this->Tangent.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Tangent.GetPointer(), n);
   this->Factor->SetName("Factor");
-  PiAllocateLarge(this->Factor.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Factor.GetPointer(), n);
   const double probe = 1e-3 * size;
   // Every ray segment lies in the bounds, and so do the hits: there the attributes may
   // skip the singularity probes where the factors prove a hit regular (a hit a rounding
@@ -58,7 +58,7 @@ void RayHitAttributes::Compute(const std::vector<std::vector<RayHit>>& rows, Ray
   int* factorOut = this->Factor->GetPointer(0);
   const vtkIdType* rowOffsets = this->RowOffsets.data();
   // A row at a time (rows differ a lot in their number of hits: small chunks).
-  PiFor(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end; ++r)
     {
       const std::vector<RayHit>& row = rows[r];

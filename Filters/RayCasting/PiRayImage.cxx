@@ -35,10 +35,10 @@ void RayImage::Shade(const std::vector<RayView>& views, int w, int rowBegin, int
   vtkNew<vtkUnsignedCharArray> rgb;
   rgb->SetName("Shading");
   rgb->SetNumberOfComponents(3);
-  PiAllocateLarge(rgb.GetPointer(), pixels);
+  pisurf::AllocateLargeArray(rgb.GetPointer(), pixels);
   vtkNew<vtkDoubleArray> depth;
   depth->SetName("Depth");
-  PiAllocateLarge(depth.GetPointer(), pixels);
+  pisurf::AllocateLargeArray(depth.GetPointer(), pixels);
   unsigned char* colour = rgb->GetPointer(0);
   double* depthOut = depth->GetPointer(0);
   const float* nrm = normals->GetPointer(0);
@@ -46,7 +46,7 @@ void RayImage::Shade(const std::vector<RayView>& views, int w, int rowBegin, int
   // Image row r (view r / h, row rowBegin + r % h) is hit row r: each row is filled with
   // the background (white, no hit) and then given its first hits, in one pass over the
   // image (a first hit is the only one of its pixel).
-  PiFor(0, vtkIdType(h) * count, 16, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, vtkIdType(h) * count, 16, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType r = begin; r < end; ++r)
     {
       const RayView& v = views[static_cast<size_t>(r / h)];

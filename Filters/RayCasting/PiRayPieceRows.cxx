@@ -17,7 +17,7 @@ RayPieceRows RayPieceRows::Of(vtkInformationVector* outputVector, bool hasImage,
   // This piece's rows of every view; the image port's requested rows widen the cast (the
   // points keep to the piece, so the pieces' points do not overlap).
   RayPieceRows rows;
-  const PiPiece request = PiPieceOf(outputVector->GetInformationObject(0));
+  const pisurf::Piece request = pisurf::PieceOf(outputVector->GetInformationObject(0));
   rows.Piece = request.Piece;
   rows.Pieces = request.Pieces;
   rows.PieceBegin = static_cast<int>(vtkIdType(h) * rows.Piece / rows.Pieces);

@@ -82,8 +82,8 @@ void RayPointOutput::SetVerts(vtkPolyData* output)
   // the cell array as they are (in its 32-bit storage when the ids fit).
   vtkNew<vtkCellArray> verts;
   auto fillVerts = [&](auto* offsets, auto* ids) {
-    PiAllocateLarge(offsets, kept + 1);
-    PiAllocateLarge(ids, kept);
+    pisurf::AllocateLargeArray(offsets, kept + 1);
+    pisurf::AllocateLargeArray(ids, kept);
     auto* offsetOut = offsets->GetPointer(0);
     auto* idOut = ids->GetPointer(0);
     using Id = typename std::remove_pointer<decltype(idOut)>::type;

@@ -190,7 +190,7 @@ inline void RayRowCaster::Cast(const RayView& v, int viewIndex, int i, int j, st
 
 inline void RayRowCaster::operator()(vtkIdType begin, vtkIdType end)
 {
-  const bool single = PiSingleThread();
+  const bool single = pisurf::SingleThread();
   Buffers buffers;
   for (vtkIdType row = begin; row < end; ++row)
   {
@@ -232,7 +232,7 @@ void RayRowCaster::Run()
 {
   // Rows differ a lot in cost (the model covers the middle of the image): small chunks
   // keep the threads balanced.
-  PiFor(0, this->RowCount, 8, *this);
+  pisurf::ParallelFor(0, this->RowCount, 8, *this);
 }
 
 std::vector<std::unique_ptr<RayGrid>> RayRowCaster::MakeGrids(

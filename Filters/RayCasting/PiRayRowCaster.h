@@ -6,7 +6,7 @@
 #ifndef PiRayRowCaster_h
 #define PiRayRowCaster_h
 
-#include "PiRayCast.h"
+#include "PiRayCaster.h"
 #include "PiRaySkipping.h"
 #include "PiRayView.h"
 

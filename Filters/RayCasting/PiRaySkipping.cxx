@@ -103,7 +103,7 @@ void RaySkipping::Tiles(const ProductKernel& kernel, const RayView& v, int axis,
   tileOffsets.resize(tileCount);
   tileRanges.resize(tileCount);
   // (one tile per task: a tile's cost depends on how much of the model it sees)
-  PiFor(0, tileCount, 1, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, tileCount, 1, [&](vtkIdType begin, vtkIdType end) {
     RayTileOctree octree;
     octree.Kernel = &kernel;
     octree.V = &v;

@@ -5,7 +5,7 @@
 #ifndef PiRayTileOctree_h
 #define PiRayTileOctree_h
 
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiRaySkipping.h"
 
 #include "vtkType.h"

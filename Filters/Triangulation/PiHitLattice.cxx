@@ -21,7 +21,7 @@ HitLattice::HitLattice(Triangulation& t, const Lattice& l)
 {
 }
 
-bool HitLattice::Run(PiPassTimer& lap)
+bool HitLattice::Run(pisurf::PassTimer& lap)
 {
   const vtkIdType lines = this->LineCount;
   this->FillLines();
@@ -29,7 +29,7 @@ bool HitLattice::Run(PiPassTimer& lap)
   lap("lines filled");
   this->HiddenCount.reset(new std::int32_t[lines]);
   this->PrepareGrids();
-  PiFor(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) { this->CastHidden(begin, end); });
+  pisurf::ParallelFor(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) { this->CastHidden(begin, end); });
   lap("sorted lines, hidden parts cast");
   if (this->MissingModel)
   {
@@ -48,7 +48,7 @@ bool HitLattice::Run(PiPassTimer& lap)
   // (small ranges of lines: the hidden roots, whose attributes cost most here, crowd on
   // the lines through the solid's hidden parts, and eight ranges per thread would leave
   // one thread working alone at the end)
-  PiFor(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) { this->MergeLines(lb, le); });
+  pisurf::ParallelFor(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) { this->MergeLines(lb, le); });
   this->Hidden.reset();
   this->Samples.reset();
   lap("lines merged");
@@ -271,7 +271,7 @@ void HitLattice::GatherHidden()
   // All hidden roots in line order: each range's roots go where its first line's go.
   this->Hidden.reset(new Sample[hiddenStart[lines]]);
   auto& hidden = this->Hidden;
-  PiFor(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType k = b; k < e; ++k)
     {
       const HiddenRange& range = hiddenRanges[k];

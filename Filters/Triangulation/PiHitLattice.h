@@ -53,7 +53,7 @@ class HitLattice
 public:
   HitLattice(Triangulation& t, const Lattice& l);
   // false (T.Abort set): canceled, or first-hit views hide roots and there is no model.
-  bool Run(PiPassTimer& lap);
+  bool Run(pisurf::PassTimer& lap);
   const LatticeLines& Lines() const { return this->Out; }
 
 private:

@@ -80,7 +80,7 @@ bool FindLattice(const Triangulation& T, Lattice& L)
 void RunLattice(Triangulation& T, const Lattice& L)
 {
   // PISURF_TIMING=1: the wall time of each pass on stderr.
-  PiPassTimer lap("vtkPiImageTriangulator");
+  pisurf::PassTimer lap("vtkPiImageTriangulator");
   HitLattice hits(T, L);
   if (!hits.Run(lap))
   {

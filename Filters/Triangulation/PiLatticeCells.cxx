@@ -29,7 +29,7 @@ LatticeCells::LatticeCells(Triangulation& t, const Lattice& l, const LatticeLine
 {
 }
 
-void LatticeCells::Run(PiPassTimer& lap)
+void LatticeCells::Run(pisurf::PassTimer& lap)
 {
   // PASS 2: the sign of F (1 outside, 0 inside) at the nodes of every z column:
   // on a lattice line the parity of the crossings below the node, on the planes of the
@@ -167,7 +167,7 @@ void LatticeCells::Rows(vtkIdType jb, vtkIdType je)
   for (vtkIdType jj = jb; jj < je && !T.Aborted(); ++jj)
   {
     const int j = static_cast<int>(jj);
-    if (PiSingleThread())
+    if (pisurf::SingleThread())
     {
       T.Algorithm->UpdateProgress(0.3 + 0.6 * j / (ny - 1));
     }
@@ -249,7 +249,7 @@ void LatticeCells::Row(
 }
 
 // Each polygon of the case (one per sheet through the cell) is triangulated along the
-// diagonals the surface bends least along (the least total PiBend, dynamic programming
+// diagonals the surface bends least along (the least total pisurf::Bend, dynamic programming
 // over the polygon's triangulations; ties: the first).
 inline void LatticeCells::EmitCell(int i, int j, int m, const unsigned char* bottom,
   const unsigned char* top, std::vector<std::int64_t>& tris, std::vector<Computed>& pts)
@@ -294,7 +294,7 @@ inline void LatticeCells::EmitCell(int i, int j, int m, const unsigned char* bot
     if (size == 4)
     {
       // (the common case: the shorter bend of the two diagonals)
-      const int d = PiBend(v[0].P, v[0].N, v[2].P, v[2].N) <= PiBend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
+      const int d = pisurf::Bend(v[0].P, v[0].N, v[2].P, v[2].N) <= pisurf::Bend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
       for (int t = 0; t < 2; ++t)
       {
         tris.push_back(v[d].Key);
@@ -313,7 +313,7 @@ void LatticeCells::SplitPolygon(const Ref* v, int size, std::vector<std::int64_t
   double cost[12][12];
   int split[12][12];
   auto bend = [&](int a, int b) {
-    return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : PiBend(v[a].P, v[a].N, v[b].P, v[b].N);
+    return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : pisurf::Bend(v[a].P, v[a].N, v[b].P, v[b].N);
   };
   for (int k = 0; k + 1 < size; ++k)
   {

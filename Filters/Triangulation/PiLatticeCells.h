@@ -26,7 +26,7 @@ class LatticeCells
 public:
   LatticeCells(Triangulation& t, const Lattice& l, const LatticeLines& lines);
   // Returns with T.Rows untouched if canceled (T.Abort).
-  void Run(PiPassTimer& lap);
+  void Run(pisurf::PassTimer& lap);
 
 private:
   // A vertex of a cell: its key, position and normal.

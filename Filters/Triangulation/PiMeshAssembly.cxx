@@ -20,7 +20,7 @@ namespace pisurf
 namespace triangulator
 {
 
-MeshAssembly::MeshAssembly(Triangulation& t, PiPassTimer& timer)
+MeshAssembly::MeshAssembly(Triangulation& t, pisurf::PassTimer& timer)
   : T(t)
   , Lap(timer)
 {
@@ -45,7 +45,7 @@ void MeshAssembly::Run(int edgeFlipRounds)
 // cell that used them: sorted and kept once).
 void MeshAssembly::NumberPoints()
 {
-  PiPassTimer& lap = this->Lap;
+  pisurf::PassTimer& lap = this->Lap;
   const Cloud& C = T.C;
   auto& rowStart = this->RowStart;
   rowStart.assign(T.Rows.size() + 1, 0);
@@ -128,7 +128,7 @@ void MeshAssembly::NumberPoints()
 
 void MeshAssembly::Vertices()
 {
-  PiPassTimer& lap = this->Lap;
+  pisurf::PassTimer& lap = this->Lap;
   const Cloud& C = T.C;
   const vtkIdType n = this->Count, usedHits = this->UsedHits;
   const vtkIdType computedCount = this->Total - usedHits;
@@ -136,16 +136,16 @@ void MeshAssembly::Vertices()
   const auto& newId = this->NewId;
   // The vertices: input hits copy their attributes, computed points take them from
   // the exact gradient.
-  PiAllocateLargePoints(this->Points, n);
+  pisurf::AllocateLargePoints(this->Points, n);
   this->Normals->SetName("Normals");
   this->Normals->SetNumberOfComponents(3);
-  PiAllocateLarge(this->Normals.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Normals.GetPointer(), n);
   this->Singular->SetName("Singular");
-  PiAllocateLarge(this->Singular.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Singular.GetPointer(), n);
   this->View->SetName("ViewIndex");
-  PiAllocateLarge(this->View.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->View.GetPointer(), n);
   this->Factor->SetName("Factor");
-  PiAllocateLarge(this->Factor.GetPointer(), n);
+  pisurf::AllocateLargeArray(this->Factor.GetPointer(), n);
   double* xyz = this->Xyz = vtkDoubleArray::SafeDownCast(this->Points->GetData())->GetPointer(0);
   float* nrmOut = this->NrmOut = this->Normals->GetPointer(0);
   // In input order (read in sequence, written where each point goes: scattered writes
@@ -246,7 +246,7 @@ void MeshAssembly::OrientTriangles()
 
 void MeshAssembly::Compact(int edgeFlipRounds)
 {
-  PiPassTimer& lap = this->Lap;
+  pisurf::PassTimer& lap = this->Lap;
   const vtkIdType rows = this->RowCount, n = this->Count;
   const auto& rowStart = this->RowStart;
   const auto& keep = this->Keep;
@@ -267,11 +267,11 @@ void MeshAssembly::Compact(int edgeFlipRounds)
   const vtkIdType kept = blockStart[rows];
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory of
   // 64-bit ids for the flips below and every filter downstream), else 64-bit.
-  PiEdgeFlipResult flipped;
+  pisurf::EdgeFlipResult flipped;
   auto compact = [&](auto* offsets, auto* cells) {
     using Id = std::remove_pointer_t<decltype(cells->GetPointer(0))>;
-    PiAllocateLarge(cells, 3 * kept);
-    PiAllocateLarge(offsets, kept + 1);
+    pisurf::AllocateLargeArray(cells, 3 * kept);
+    pisurf::AllocateLargeArray(offsets, kept + 1);
     Id* cellIds = cells->GetPointer(0);
     Id* offsetIds = offsets->GetPointer(0);
     vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
@@ -299,9 +299,9 @@ void MeshAssembly::Compact(int edgeFlipRounds)
     lap("triangles");
     // Boundary edges (used by one triangle), then the edge flips towards the curvature
     // (PiEdgeFlips.h): vertices stay, the boundary and the topology too.
-    flipped = PiFlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, edgeFlipRounds);
+    flipped = pisurf::FlipEdgesToCurvature(cellIds, kept, n, xyz, nrmOut, edgeFlipRounds);
   };
-  if (PiFitsInt32Cells(kept, n))
+  if (pisurf::FitsInt32Cells(kept, n))
   {
     vtkNew<vtkTypeInt32Array> offsets, cells;
     compact(offsets.Get(), cells.Get());

@@ -26,7 +26,7 @@ namespace triangulator
 class MeshAssembly
 {
 public:
-  MeshAssembly(Triangulation& t, PiPassTimer& lap);
+  MeshAssembly(Triangulation& t, pisurf::PassTimer& lap);
   void Run(int edgeFlipRounds);
 
   vtkNew<vtkPoints> Points;
@@ -45,7 +45,7 @@ private:
   void Compact(int edgeFlipRounds);
 
   Triangulation& T;
-  PiPassTimer& Lap;
+  pisurf::PassTimer& Lap;
   // Triangle corners of row r start at RowStart[r] (of all rows' corners).
   std::vector<vtkIdType> RowStart;
   std::unique_ptr<vtkIdType[]> HitOut; // the point id of each input hit, or −1

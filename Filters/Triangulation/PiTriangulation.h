@@ -6,10 +6,10 @@
 #define PiTriangulation_h
 
 #include "PiBuffer.h"
-#include "PiInputModel.h"
+#include "PiInputSurface.h"
 #include "PiParallel.h"
-#include "PiProduct.h"
-#include "PiRayCast.h"
+#include "PiProductKernel.h"
+#include "PiRayCaster.h"
 #include "vtkPiImageTriangulator.h"
 
 #include "vtkDataArray.h"
@@ -151,7 +151,7 @@ struct Triangulation
   vtkPiImageTriangulator* Algorithm;
   Cloud C;
   std::vector<View> Views;
-  // The model: a product (PiSurfaceModel), or a molecule's field (PiInputModel.h), or
+  // The model: a product (PiSurfaceModel), or a molecule's field (pisurf::InputSurface.h), or
   // neither (all-hits views need none).
   std::shared_ptr<const pisurf::ProductKernel> Kernel;
   std::unique_ptr<pisurf::MoleculeField> Molecule;
@@ -162,12 +162,12 @@ struct Triangulation
   // them write them)
   std::vector<Computed, pisurf::DefaultInitAllocator<Computed>> Points;
   std::atomic<bool> Abort{ false };
-  bool ChooseDiagonals = true; // split lattice polygons by PiBend (else fan them)
+  bool ChooseDiagonals = true; // split lattice polygons by pisurf::Bend (else fan them)
   double Probe = 0, SingularTolerance = 0.1; // the singular test of computed points
 
   bool Aborted()
   {
-    if (PiSingleThread() && this->Algorithm->CheckAbort())
+    if (pisurf::SingleThread() && this->Algorithm->CheckAbort())
     {
       this->Abort = true;
     }

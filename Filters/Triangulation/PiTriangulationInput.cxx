@@ -29,7 +29,7 @@ vtkDataArray* Array(vtkPointData* pd, const char* name, int components)
 }
 }
 
-bool TriangulationInput::Read(vtkPolyData* input, Triangulation& T, PiPassTimer& lap)
+bool TriangulationInput::Read(vtkPolyData* input, Triangulation& T, pisurf::PassTimer& lap)
 {
   // The pixel structure: PixelIndex, ViewIndex, Depth, Normals and PiRayViews.
   vtkPointData* pd = input->GetPointData();
@@ -236,7 +236,7 @@ bool TriangulationInput::ReadModel(vtkPolyData* input, Triangulation& T)
   // The model, when the input carries it (needed for what the views did not see): a
   // molecule's field (any size, either mode), else the product of PiSurfaceModel.
   auto* json = this->Json = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
-  PiMoleculeInput& molecule = this->Molecule;
+  pisurf::MoleculeInput& molecule = this->Molecule;
   std::string moleculeError;
   if (!molecule.Read(input, moleculeError))
   {

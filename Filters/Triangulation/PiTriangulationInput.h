@@ -24,10 +24,10 @@ class TriangulationInput
 {
 public:
   // false (an error reported on T.Algorithm) if the input is not a ray cast's.
-  bool Read(vtkPolyData* input, Triangulation& T, PiPassTimer& lap);
+  bool Read(vtkPolyData* input, Triangulation& T, pisurf::PassTimer& lap);
 
   vtkStringArray* Json = nullptr; // PiSurfaceModel, if the input carries it
-  PiMoleculeInput Molecule;
+  pisurf::MoleculeInput Molecule;
   // The extent of the views' rays and of the hits (empty if there is neither).
   double Box[6];
 

@@ -6,7 +6,7 @@
 // other processes on a shared machine disturb less), the all-hits time over the first-hit
 // time, both casts' hit counts, and the hits the marcher misses. PIRAY_BENCH_QUICK=1 skips the marcher and the
 // spheres (for profiling).
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPiSurface.h"

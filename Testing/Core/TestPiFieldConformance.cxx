@@ -14,7 +14,7 @@
 //   their tolerance.
 #include "PiCoreTestUtilities.h"
 #include "PiModel.h"
-#include "PiMolecule.h"
+#include "PiMoleculeField.h"
 #include "PiProductField.h"
 
 #include <gtest/gtest.h>

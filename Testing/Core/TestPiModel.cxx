@@ -2,7 +2,7 @@
 // Unit tests of the .pisurf model: ParseModel, WriteModel, ValidBounds (PiModel.h), and
 // of every model in Testing/Data/Models.
 #include "PiModel.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // changes a sign; ClassifyBox never decides wrongly; FirstRoot's vertex is within the
 // tolerance of a true root with F > 0 before it.
 #include "PiCoreTestUtilities.h"
-#include "PiMolecule.h"
+#include "PiMoleculeField.h"
 
 #include <gtest/gtest.h>
 

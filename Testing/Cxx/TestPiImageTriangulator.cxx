@@ -454,9 +454,9 @@ int TestPiImageTriangulator(int, char*[])
       std::vector<std::int32_t> narrow(once.begin(), once.end());
       const vtkIdType triangles = static_cast<vtkIdType>(once.size() / 3);
       const vtkIdType n = first->GetNumberOfPoints();
-      const PiEdgeFlipResult a =
-        PiFlipEdgesToCurvature(wide.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
-      const PiEdgeFlipResult c = PiFlipEdgesToCurvature(
+      const pisurf::EdgeFlipResult a =
+        pisurf::FlipEdgesToCurvature(wide.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
+      const pisurf::EdgeFlipResult c = pisurf::FlipEdgesToCurvature(
         narrow.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
       std::cout << "cup, flips on 64- and 32-bit ids: " << a.Flips << " and " << c.Flips
                 << " edges\n";

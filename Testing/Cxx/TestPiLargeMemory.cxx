@@ -107,7 +107,7 @@ int TestPiLargeMemory(int, char*[])
   {
     vtkNew<vtkDoubleArray> array;
     array->SetNumberOfComponents(3);
-    PiAllocateLarge(array.GetPointer(), 1000000);
+    pisurf::AllocateLargeArray(array.GetPointer(), 1000000);
     Check(array->GetNumberOfTuples() == 1000000, "the array has its tuples");
     first = array->GetPointer(0);
     array->FillValue(2.0);
@@ -115,7 +115,7 @@ int TestPiLargeMemory(int, char*[])
   {
     vtkNew<vtkDoubleArray> array;
     array->SetNumberOfComponents(3);
-    PiAllocateLarge(array.GetPointer(), 1000000);
+    pisurf::AllocateLargeArray(array.GetPointer(), 1000000);
     Check(array->GetPointer(0) == first, "the next array of that size reuses the memory");
     // Growing the array moves it to fresh memory and gives the block back.
     array->InsertNextTuple3(1.0, 2.0, 3.0);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// PiFor (PiParallel.h): with each backend (Sequential, STDThread with 2 and 4 threads),
+// pisurf::ParallelFor (PiParallel.h): with each backend (Sequential, STDThread with 2 and 4 threads),
 // every index of the range is visited exactly once, in chunks that start on the grain's
 // multiples and are at most a grain long (vtkSMPTools' default grain where it is 0);
-// exactly one thread is the single thread of PiSingleThread (the one that reports
+// exactly one thread is the single thread of pisurf::SingleThread (the one that reports
 // progress and checks for a cancel), also when the loop runs serially on the calling
 // thread, where ParaView 5.11's vtkSMPTools::GetSingleThread() reads an empty stack and
-// crashed this test; a PiFor inside a PiFor (as the mesher's passes nest in ParaView's
+// crashed this test; a pisurf::ParallelFor inside a pisurf::ParallelFor (as the mesher's passes nest in ParaView's
 // pipelines) visits its whole range too.
 #include "PiParallel.h"
 
@@ -49,7 +49,7 @@ void Run(const std::string& setup)
         std::atomic<bool> aligned{ true }, bounded{ true }, empty{ false };
         std::mutex mutex;
         std::set<std::thread::id> threads, single;
-        PiFor(first, first + n, grain, [&](vtkIdType begin, vtkIdType end) {
+        pisurf::ParallelFor(first, first + n, grain, [&](vtkIdType begin, vtkIdType end) {
           if (!(begin < end))
           {
             empty = true;
@@ -69,7 +69,7 @@ void Run(const std::string& setup)
           }
           std::lock_guard<std::mutex> lock(mutex);
           threads.insert(std::this_thread::get_id());
-          if (PiSingleThread())
+          if (pisurf::SingleThread())
           {
             single.insert(std::this_thread::get_id());
           }
@@ -94,10 +94,10 @@ void Run(const std::string& setup)
 
   // Nested: the inner loops run whole inside the outer one.
   std::atomic<long> sum{ 0 };
-  PiFor(0, 64, 1, [&](vtkIdType begin, vtkIdType end) {
+  pisurf::ParallelFor(0, 64, 1, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
-      PiFor(0, 100, 8, [&](vtkIdType b, vtkIdType e) { sum += e - b; });
+      pisurf::ParallelFor(0, 100, 8, [&](vtkIdType b, vtkIdType e) { sum += e - b; });
     }
   });
   Check(sum == 6400, setup + ": nested loops visit 64 x 100 indices");

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file PiProduct.h
+ * @file PiProductKernel.h
  * @brief overflow-safe evaluation of F = Π f_i − r and its exact gradient
  *
  * A product of thousands of factors leaves the double range long before the surface
@@ -20,8 +20,8 @@
  * The kernel is immutable once built and all methods are const and reentrant: any
  * number of threads may share one kernel.
  */
-#ifndef PiProduct_h
-#define PiProduct_h
+#ifndef PiProductKernel_h
+#define PiProductKernel_h
 
 #include "PiPrimitiveSpec.h"
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Unit tests of pisurf::ProductKernel (PiProduct.h): F = Π f_i − r and its gradient.
-#include "PiProduct.h"
+// Unit tests of pisurf::ProductKernel (PiProductKernel.h): F = Π f_i − r and its gradient.
+#include "PiProductKernel.h"
 #include "PiFloat.h"
 #include "PiCoreTestUtilities.h"
 

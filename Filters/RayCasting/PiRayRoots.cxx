@@ -4,7 +4,7 @@
 #include "PiScaledInterval.h"
 
 #include "PiPolynomial.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 
 #include <algorithm>
 #include <cmath>

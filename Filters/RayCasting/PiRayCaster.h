@@ -9,10 +9,10 @@
  * scan of 4096 samples with bisection: such a scan can miss features thinner than one
  * sample, and it says so in the algorithms' documentation.
  */
-#ifndef PiRayCast_h
-#define PiRayCast_h
+#ifndef PiRayCaster_h
+#define PiRayCaster_h
 
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiRayRoots.h"
 
 #include <vector>

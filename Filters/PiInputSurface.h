@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file PiInputModel.h
+ * @file InputSurface.h
  * @brief the Pi-surface an algorithm of this module works on
  *
  * Pi Ray Cast and Pi Sample Function take their Pi-surface from their input's field-data
@@ -8,14 +8,14 @@
  * reader and the molecular surface) when an input is connected, else from the one set
  * on them (SetPiSurface). Pi Ray Cast, Image Based Triangulation and Pi Sample Function
  * also take a molecule, of any size and either mode, from the compact arrays the
- * molecular surface writes (PiMoleculeInput), and then work on its own field.
+ * molecular surface writes (MoleculeInput), and then work on its own field.
  */
-#ifndef PiInputModel_h
-#define PiInputModel_h
+#ifndef PiInputSurface_h
+#define PiInputSurface_h
 
 #include "PiModel.h"
-#include "PiMolecule.h"
-#include "PiProduct.h"
+#include "PiMoleculeField.h"
+#include "PiProductKernel.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
@@ -30,9 +30,12 @@
 #include <string>
 #include <vector>
 
+namespace pisurf
+{
+
 /// The model `input` carries, or `set` without an input; null with the reason in
 /// `error` if the input carries no model or an invalid one, or there is neither.
-inline vtkSmartPointer<vtkPiSurface> PiSurfaceOf(
+inline vtkSmartPointer<vtkPiSurface> SurfaceOf(
   vtkDataObject* input, vtkPiSurface* set, std::string& error)
 {
   if (!input)
@@ -64,7 +67,7 @@ inline vtkSmartPointer<vtkPiSurface> PiSurfaceOf(
 /// `PiMoleculeCenters` (3 components per atom, Å), `PiMoleculeRadii` (Å) and
 /// `PiMoleculeSettings` (9 values: Mode 0 = Global or 1 = Local, Blending,
 /// InfluenceRadius, then the bounds x0, x1, y0, y1, z0, z1 it was meshed in).
-struct PiMoleculeInput
+struct MoleculeInput
 {
   bool Present = false;
   std::vector<double> Centers, Radii;
@@ -171,9 +174,9 @@ struct PiMoleculeInput
 /// What Pi Ray Cast and Pi Sample Function work on: the input's molecule when it
 /// carries one (`Molecule.Present`), else the product of its PiSurfaceModel or the one
 /// set (`Surface`, `Kernel`, with at least one factor).
-struct PiInputSurface
+struct InputSurface
 {
-  PiMoleculeInput Molecule;
+  MoleculeInput Molecule;
   vtkSmartPointer<vtkPiSurface> Surface;
   std::shared_ptr<const pisurf::ProductKernel> Kernel;
 
@@ -188,7 +191,7 @@ struct PiInputSurface
     {
       return true;
     }
-    this->Surface = PiSurfaceOf(input, set, error);
+    this->Surface = SurfaceOf(input, set, error);
     if (!this->Surface)
     {
       return false;
@@ -218,5 +221,7 @@ struct PiInputSurface
     return true;
   }
 };
+
+}
 
 #endif

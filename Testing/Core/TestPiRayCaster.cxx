@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Unit tests of pisurf::RayCaster's hit attributes (PiRayCast.h): the singularity test
+// Unit tests of pisurf::RayCaster's hit attributes (PiRayCaster.h): the singularity test
 // and its shortcut (ProductKernel::EvaluateVertexIfRegular), which skips the six probes
 // only where they could not have said "singular".
 #include "PiModel.h"
-#include "PiProduct.h"
-#include "PiRayCast.h"
+#include "PiProductKernel.h"
+#include "PiRayCaster.h"
 #include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>

@@ -13,7 +13,7 @@
 #define PiProductField_h
 
 #include "PiField.h"
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 
 #include <memory>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "PiRayCast.h"
+#include "PiRayCaster.h"
 
 #include "PiFloat.h"
-#include "PiMolecule.h"
-#include "PiProduct.h"
+#include "PiMoleculeField.h"
+#include "PiProductKernel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
  * to grid rows) or, through this interface, any function that answers the same four
  * questions. A function whose factors are not worth evaluating at every point, such as
  * a molecule of 10^5 atoms where only the atoms near a point matter, implements it with
- * its own spatial structures (see PiMolecule.h).
+ * its own spatial structures (see PiMoleculeField.h).
  *
  * Contract, shared with ProductKernel: the sign of F is exact; F is clamped to
  * ±DBL_MAX; every method is const and reentrant (many threads share one field); the

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file PiMolecule.h
+ * @file PiMoleculeField.h
  * @brief molecular Π-surfaces: van der Waals radii and the atom-product field
  *
  * A molecule is a set of atom spheres f_i(p) = |p − c_i|² − R_i² (Raposo and Gomes,
@@ -55,8 +55,8 @@
  *     that table has no hydrogen: H uses 1.10 Å (R. S. Rowland, R. Taylor, J. Phys. Chem.
  *     100 (1996) 7384–7391).
  */
-#ifndef PiMolecule_h
-#define PiMolecule_h
+#ifndef PiMoleculeField_h
+#define PiMoleculeField_h
 
 #include "PiField.h"
 #include "PiRayRoots.h"

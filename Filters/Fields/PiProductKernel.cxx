@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "PiProduct.h"
+#include "PiProductKernel.h"
 #include "PiFloat.h"
 
 #include <algorithm>

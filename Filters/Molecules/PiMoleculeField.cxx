@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "PiMolecule.h"
+#include "PiMoleculeField.h"
 #include "PiFloat.h"
 
-#include "PiProduct.h"  // SignOfProductMinus
+#include "PiProductKernel.h"  // SignOfProductMinus
 #include "PiRayRoots.h" // BracketedRoot
 #include "PiScaledInterval.h"
 
