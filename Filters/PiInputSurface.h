@@ -15,6 +15,7 @@
 
 #include "PiModel.h"
 #include "PiMoleculeField.h"
+#include "PiProductField.h"
 #include "PiProductKernel.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -173,7 +174,8 @@ struct MoleculeInput
 
 /// What Pi Ray Cast and Pi Sample Function work on: the input's molecule when it
 /// carries one (`Molecule.Present`), else the product of its PiSurfaceModel or the one
-/// set (`Surface`, `Kernel`, with at least one factor).
+/// set (`Surface`, `Kernel`, with at least one factor); MakeField gives either as the
+/// one Field the algorithms evaluate.
 struct InputSurface
 {
   MoleculeInput Molecule;
@@ -203,6 +205,17 @@ struct InputSurface
       return false;
     }
     return true;
+  }
+
+  /// The field to evaluate: the molecule's, with its cells over `region`, or the
+  /// product's; null with the reason in `error` if it cannot be built.
+  std::shared_ptr<const pisurf::Field> MakeField(const double region[6], std::string& error) const
+  {
+    if (this->Molecule.Present)
+    {
+      return this->Molecule.MakeField(region, error);
+    }
+    return std::make_shared<pisurf::ProductField>(this->Kernel);
   }
 
   /// The box to work in: `requested`, or where it is all zero the molecule's bounds or

@@ -6,10 +6,10 @@
 #include "PiLastValidOutput.h"
 
 #include "Meshing/PiBlockGrid.h"
-#include "Meshing/PiMeshEvaluator.h"
 #include "Meshing/PiMeshingDriver.h"
 #include "Meshing/PiMeshingWork.h"
 #include "PiModel.h"
+#include "PiProductField.h"
 #include "PiProductKernel.h"
 #include "vtkPiSurface.h"
 
@@ -189,10 +189,11 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const pisurf::Piece request = pisurf::PieceOf(outInfo);
   const int piece = request.Piece, pieces = request.Pieces;
-  const std::shared_ptr<const pisurf::Field> field = this->Internals->Field;
-  std::shared_ptr<const pisurf::ProductKernel> kernel;
+  // The field set (SetField), else the product of the Pi-surface.
+  std::shared_ptr<const pisurf::Field> field = this->Internals->Field;
+  const bool fieldSet = field != nullptr;
   double bounds[6];
-  if (field)
+  if (fieldSet)
   {
     std::copy(this->Bounds, this->Bounds + 6, bounds);
     if (!(bounds[0] < bounds[1] && bounds[2] < bounds[3] && bounds[4] < bounds[5]))
@@ -208,7 +209,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       vtkErrorMacro(<< "No Pi-surface to mesh: call SetPiSurface()");
       return 0;
     }
-    kernel = this->PiSurface->GetKernel();
+    std::shared_ptr<const pisurf::ProductKernel> kernel = this->PiSurface->GetKernel();
     if (!kernel || kernel->GetNumberOfFactors() == 0)
     {
       vtkErrorMacro(<< "The Pi-surface is invalid or has no factors"
@@ -221,13 +222,13 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
       vtkErrorMacro(<< "No bounds to mesh in: " << this->PiSurface->GetErrorMessage());
       return 0;
     }
+    field = std::make_shared<pisurf::ProductField>(std::move(kernel));
   }
-  const pisurf::MeshEvaluator evaluator{ kernel.get(), field.get() };
 
   int resolution = this->Resolution;
   const bool explicitDimensions = this->SampleDimensions[0] != 0 ||
     this->SampleDimensions[1] != 0 || this->SampleDimensions[2] != 0;
-  if (this->AutomaticResolution && !explicitDimensions && !field)
+  if (this->AutomaticResolution && !explicitDimensions && !fieldSet)
   {
     resolution = this->ChooseResolution(bounds);
     if (resolution <= 0)
@@ -255,7 +256,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     this->ComputeGradientMagnitude, this->MaximumNumberOfSamples, size };
   pisurf::MeshingDriver driver(this, this->Internals->Work, lap);
   const pisurf::MeshingDriver::Result result =
-    driver.Run(evaluator, g, piece, pieces, settings, output);
+    driver.Run(*field, g, piece, pieces, settings, output);
   if (result != pisurf::MeshingDriver::Meshed)
   {
     return result == pisurf::MeshingDriver::Failed ? 0 : 1;
@@ -263,7 +264,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
   const vtkIdType vertices = driver.GetNumberOfVertices();
 
   pisurf::Model model;
-  if (!field && this->PiSurface->GetCoreModel(model))
+  if (!fieldSet && this->PiSurface->GetCoreModel(model))
   {
     if (!model.HasBounds)
     {
@@ -276,7 +277,7 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
-  if (this->GeneratePrimitives && primitives && !field)
+  if (this->GeneratePrimitives && primitives && !fieldSet)
   {
     this->MeshPrimitives(bounds, g.Dims, piece, pieces, primitives);
   }

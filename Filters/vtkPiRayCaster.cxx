@@ -82,22 +82,6 @@ bool CheckSettings(const int resolution[2], double singularTolerance, std::strin
   return error.empty();
 }
 
-// The caster of a molecule's field (kept in `field`), else of the product.
-std::unique_ptr<pisurf::RayCaster> MakeCaster(const pisurf::MoleculeInput& molecule,
-  const pisurf::ProductKernel* kernel, const double b[6],
-  std::unique_ptr<pisurf::MoleculeField>& field, std::string& error)
-{
-  if (molecule.Present)
-  {
-    field = molecule.MakeField(b, error);
-    if (!field)
-    {
-      return nullptr;
-    }
-    return std::make_unique<pisurf::RayCaster>(*field);
-  }
-  return std::make_unique<pisurf::RayCaster>(*kernel);
-}
 }
 
 vtkPiRayCaster::vtkPiRayCaster()
@@ -183,9 +167,6 @@ int vtkPiRayCaster::RequestData(
   }
   const pisurf::MoleculeInput& molecule = in.Molecule;
   const vtkSmartPointer<vtkPiSurface>& surface = in.Surface;
-  const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
-  // Orthographic row restriction and the empty-space octree: polynomial products only.
-  const bool polynomial = kernel && kernel->IsPolynomial();
   if (!CheckSettings(this->Resolution, this->SingularTolerance, error))
   {
     vtkErrorMacro(<< error);
@@ -229,15 +210,16 @@ int vtkPiRayCaster::RequestData(
   const vtkIdType rowCount = static_cast<vtkIdType>(views.size()) * (rowEnd - rowBegin);
   std::vector<std::vector<RayHit>>& rows = this->Rows->Reset(static_cast<size_t>(rowCount));
   std::atomic<bool> abort{ false };
-  std::unique_ptr<pisurf::MoleculeField> field;
-  const std::unique_ptr<pisurf::RayCaster> casterPointer =
-    MakeCaster(molecule, kernel.get(), b, field, error);
-  if (!casterPointer)
+  const std::shared_ptr<const pisurf::Field> field = in.MakeField(b, error);
+  if (!field)
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  pisurf::RayCaster& caster = *casterPointer;
+  pisurf::RayCaster caster(*field);
+  // Orthographic row restriction and the empty-space octree: polynomial products only.
+  const pisurf::ProductKernel* kernel = field->GetProductKernel();
+  const bool polynomial = kernel && kernel->IsPolynomial();
   // Orthographic views of polynomial products restrict their rays from per-view
   // compositions (pisurf::RayGrid).
   std::vector<std::unique_ptr<pisurf::RayGrid>> grids(views.size());

@@ -99,8 +99,6 @@ int vtkPiSampleFunction::RequestData(
     vtkErrorMacro(<< error);
     return 0;
   }
-  const pisurf::MoleculeInput& molecule = in.Molecule;
-  const std::shared_ptr<const pisurf::ProductKernel>& kernel = in.Kernel;
   const int* d = this->SampleDimensions;
   if (d[0] < 2 || d[1] < 2 || d[2] < 2)
   {
@@ -156,16 +154,14 @@ int vtkPiSampleFunction::RequestData(
   // whole grid's row (so a piece's values have the bits of the whole grid's, and of the
   // mesher's on the same grid), then Horner's rule several points at a time.
   const vtkIdType rows = vtkIdType(ny) * nz;
-  std::unique_ptr<pisurf::MoleculeField> field;
-  if (molecule.Present)
+  const std::shared_ptr<const pisurf::Field> field = in.MakeField(b, error);
+  if (!field)
   {
-    field = molecule.MakeField(b, error);
-    if (!field)
-    {
-      vtkErrorMacro(<< error);
-      return 0;
-    }
+    vtkErrorMacro(<< error);
+    return 0;
   }
+  // The product's rows restricted at once, else the field point by point.
+  const pisurf::ProductKernel* kernel = field->GetProductKernel();
   const double step[3] = { spacing[0], 0.0, 0.0 };
   const double mid = 0.5 * (d[0] - 1);
   std::atomic<bool> abort{ false };
@@ -174,9 +170,9 @@ int vtkPiSampleFunction::RequestData(
     for (vtkIdType r = begin; r < end && !abort; ++r)
     {
       const int j = extent[2] + static_cast<int>(r % ny), k = extent[4] + static_cast<int>(r / ny);
-      if (field)
+      if (!kernel)
       {
-        // The molecule's field point by point (its cells hold the atoms near each point),
+        // The field point by point (a molecule's cells hold the atoms near each point),
         // at the points the mesher would take: origin + index·spacing.
         for (int i = 0; i < nx; ++i)
         {

@@ -1,28 +1,47 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file PiField.h
- * @brief an implicit function F the mesher can work on without a ProductKernel
+ * @brief the one interface every algorithm evaluates: an implicit function F
  *
- * vtkPiFlyingEdges meshes a ProductKernel (a product of polynomial factors, restricted
- * to grid rows) or, through this interface, any function that answers the same four
- * questions. A function whose factors are not worth evaluating at every point, such as
- * a molecule of 10^5 atoms where only the atoms near a point matter, implements it with
- * its own spatial structures (see PiMoleculeField.h).
+ * The mesher, the ray caster, the image-based triangulator and the sample function
+ * work on a `pisurf::Field`. Two fields implement it: the product of primitives
+ * (ProductField, PiProductField.h) and a molecule's Global or Local field
+ * (MoleculeField, PiMoleculeField.h). A field answers the four required questions
+ * (ClassifyBox, Evaluate, EvaluateCompressed, EvaluateVertex); the others have a
+ * general answer built on those four, which a field overrides where its structure
+ * answers faster (a molecule restricts itself to the atoms near a box, an edge or a
+ * ray).
  *
- * Contract, shared with ProductKernel: the sign of F is exact; F is clamped to
- * ±DBL_MAX; every method is const and reentrant (many threads share one field); the
- * same point always evaluates to the same value, whichever block or edge asks.
+ * One capability is asked for once, when an algorithm sets up: GetProductKernel(), the
+ * product's factor-wise fast paths (restriction of every factor to grid rows and rays,
+ * vertex attributes four points at a time, monotony proofs on octants). An algorithm
+ * that gets one runs its row and lane passes on it; with null it runs the general
+ * passes on the questions below. No algorithm asks which concrete field it holds.
+ *
+ * Contract: the sign of F is exact; F is clamped to ±DBL_MAX; every method is const
+ * and reentrant (many threads share one field); the same point always evaluates to the
+ * same value, whichever block, edge or ray asks. Testing/Core/TestPiFieldConformance.cxx
+ * checks this contract on every field.
  */
 #ifndef PiField_h
 #define PiField_h
 
+#include "PiRayRoots.h"
+
+#include <vector>
+
 namespace pisurf
 {
+class ProductKernel;
 
 class Field
 {
 public:
   virtual ~Field() = default;
+
+  /// The product's factor-wise fast paths (row and line restriction, vertex lanes,
+  /// monotony proofs), or null for a field without them. Asked once at set-up.
+  virtual const ProductKernel* GetProductKernel() const { return nullptr; }
 
   /// Over the box [b0,b1]x[b2,b3]x[b4,b5]: +1 if F > 0 everywhere, −1 if F < 0
   /// everywhere, 0 if the surface may cross it. Must never be wrong when not 0.
@@ -36,12 +55,30 @@ public:
   /// factor (for a molecule: the atom) whose zero set is nearest.
   virtual void EvaluateVertex(
     const double p[3], double normal[3], double& gradientNorm, int& nearest) const = 0;
-  /// True only where p provably lies off the closure of the outer (unbounded) component
-  /// of {F > 0}: in a bounded component of {F > 0}, or on its boundary. The outer
-  /// envelope's flood fill does not pass such points, and a vertex root-found there is
-  /// moved to the surface nearest the outside, so a grid too coarse to resolve the thin
-  /// wall around such a component (the lens where two atom spheres overlap, at small r)
-  /// cannot leak into it. The default knows nothing and says false.
+  /// ClassifyBox and, when that gives 0, the same for the box's eight octants (octant o
+  /// takes the upper half on axis a when bit a of o is set, as OctantBox cuts it).
+  /// Returns the box's sign; `octants` is written only when it is 0, and then only up
+  /// to the first undecided octant (the ones after it are given 0), unless `allOctants`
+  /// asks for every octant's sign. The default asks ClassifyBox nine times at most.
+  virtual int ClassifyBoxAndOctants(
+    const double box[6], int octants[8], bool allOctants = false) const;
+  /// The sign of F(p) (−1, 0, 1) and ln|F(p)| without overflow. The default takes both
+  /// from Evaluate, whose logarithm is that of the clamped value.
+  virtual int EvaluateSignAndLog(const double p[3], double& logAbs) const;
+  /// The roots of F along o + t·d for t in [t0, t1], in increasing t (only the first
+  /// unless options.AllRoots), each within options.Tolerance (in units of t). The
+  /// default scans the sign of EvaluateCompressed at 4096 equal steps and bisects each
+  /// change: it can miss features thinner than one step. A field that can enclose F
+  /// along a ray certifies every root instead.
+  virtual void CastRay(const double o[3], const double d[3], double t0, double t1,
+    const RayRootOptions& options, std::vector<RayRoot>& roots) const;
+  /// The attributes of a surface point p (EvaluateVertex's unit normal, |∇F| and
+  /// nearest factor) and whether p is singular on the scale `probe`: |∇F|·probe is at
+  /// most `tolerance` times the largest |F| at the six points p ± probe·e_i (compared
+  /// in logarithms, so it holds where |∇F| and F leave the double range).
+  virtual bool ProbeVertex(const double p[3], double probe, double tolerance,
+    double normal[3], double& gradientNorm, int& nearest) const;
+
   /// The first root of F on the segment from `from` to `to`, where F(from) > 0, as the
   /// fraction s of the way, certified to within `tolerance` (a length): return true only
   /// when F > 0 provably holds before s − tolerance and a root lies within `tolerance` of
@@ -56,11 +93,20 @@ public:
     (void)s;
     return false;
   }
+  /// True only where p provably lies off the closure of the outer (unbounded) component
+  /// of {F > 0}: in a bounded component of {F > 0}, or on its boundary. The outer
+  /// envelope's flood fill does not pass such points, and a vertex root-found there is
+  /// moved to the surface nearest the outside, so a grid too coarse to resolve the thin
+  /// wall around such a component (the lens where two atom spheres overlap, at small r)
+  /// cannot leak into it. The default knows nothing and says false.
   virtual bool OffOuterSide(const double p[3]) const
   {
     (void)p;
     return false;
   }
+  /// Whether OffOuterSide (and OffOuterSideBox) may ever say true: the outer envelope
+  /// asks once, and skips the per-point question for a field that never marks a point.
+  virtual bool HasOffOuterSide() const { return false; }
 
   /// F at the grid points origin + (i, j, k)·spacing for first <= (i, j, k) <= last
   /// (the point computed as origin[a] + index·spacing[a], as the mesher does), written

@@ -4,6 +4,7 @@
 #include "PiBlockClassifier.h"
 
 #include "PiParallel.h"
+#include "PiProductKernel.h"
 
 #include <algorithm>
 #include <atomic>
@@ -16,14 +17,14 @@ namespace
 {
 // PASS 1: interval bounds of F over each block still undecided.
 //
-// With `Corners` (a product kernel), a block whose corners (grid points) have F of both
+// With `Corners` (a field with the product's fast paths), a block whose corners (grid points) have F of both
 // signs, or 0 at one, holds the surface: it is active without its enclosures, which
 // could not have decided it either (the same active blocks). Each corner is evaluated
 // once, by whichever block asks first (`Corners` starts at Unknown; two threads that
 // ask at once store the same sign).
 struct ClassifyBlocks
 {
-  const MeshEvaluator* Kernel;
+  const Field* F;
   BlockGrid* G;
   const std::vector<vtkIdType>* Blocks; // the blocks to classify
   std::atomic<signed char>* Corners = nullptr; // per corner of the block lattice
@@ -44,7 +45,7 @@ struct ClassifyBlocks
       {
         p[a] = g.Origin[a] + std::min(corner[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
       }
-      const double f = this->Kernel->Evaluate(p);
+      const double f = this->F->Evaluate(p);
       sign = static_cast<signed char>(f > 0 ? 1 : (f < 0 ? -1 : 0)); // (NaN: 0, active)
       this->Corners[id].store(sign, std::memory_order_relaxed);
     }
@@ -80,16 +81,41 @@ struct ClassifyBlocks
         box[2 * a] = this->G->Origin[a] + this->G->First(c, a) * this->G->Spacing[a];
         box[2 * a + 1] = this->G->Origin[a] + this->G->Last(c, a) * this->G->Spacing[a];
       }
-      this->G->Sign[b] = static_cast<signed char>(this->Kernel->ClassifyBlock(box));
+      this->G->Sign[b] = static_cast<signed char>(this->ClassifyBlock(box));
     }
+  }
+
+  // A block: ClassifyBox, and where that cannot decide, its octants (enclosures
+  // tighten on smaller boxes: if all eight exclude the surface, so does the block, F
+  // having no zero in it and so one sign throughout).
+  int ClassifyBlock(const double box[6]) const
+  {
+    int octants[8];
+    const int sign = this->F->ClassifyBoxAndOctants(box, octants);
+    if (sign != 0)
+    {
+      return sign;
+    }
+    for (int o = 0; o < 8; ++o)
+    {
+      if (octants[o] == 0)
+      {
+        return 0;
+      }
+    }
+    return octants[0];
   }
 };
 }
 
 // Value 2 marks "still to classify".
 void BlockClassifier::ClassifyGroups(
-  const MeshEvaluator& evaluator, BlockGrid& g, int classifyBegin, int classifyEnd)
+  const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd)
 {
+  // (A product of polynomials classifies a group's eight octants from the same
+  // expansions; an octant that holds exactly a sub-group below decides it.)
+  const ProductKernel* kernel = field.GetProductKernel();
+  const bool octantsToo = kernel && kernel->IsPolynomial();
   g.Sign.assign(vtkIdType(g.Count[0]) * g.Count[1] * g.Count[2], 0);
   const int group = 4;
   int groups[3];
@@ -139,14 +165,9 @@ void BlockClassifier::ClassifyGroups(
         box[2 * a + 1] =
           g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
       }
-      // (A product of polynomials classifies the group's eight octants from the same
-      // expansions; an octant that holds exactly a sub-group below decides it.)
-      const bool octantsToo =
-        evaluator.Kernel && !evaluator.Field && evaluator.Kernel->IsPolynomial();
       int groupOctants[8];
-      const int sign = octantsToo
-        ? evaluator.Kernel->ClassifyBoxAndOctants(box, groupOctants, true)
-        : evaluator.ClassifyBox(box);
+      const int sign = octantsToo ? kernel->ClassifyBoxAndOctants(box, groupOctants, true)
+                                  : field.ClassifyBox(box);
       setSigns(lo, hi, sign == 0 ? 2 : sign);
       if (sign != 0)
       {
@@ -176,9 +197,8 @@ void BlockClassifier::ClassifyGroups(
           continue;
         }
         int subOctants[8];
-        const int subSign = octantsToo
-          ? evaluator.Kernel->ClassifyBoxAndOctants(sub, subOctants, true)
-          : evaluator.ClassifyBox(sub);
+        const int subSign = octantsToo ? kernel->ClassifyBoxAndOctants(sub, subOctants, true)
+                                       : field.ClassifyBox(sub);
         if (subSign != 0)
         {
           setSigns(sublo, subhi, subSign);
@@ -215,10 +235,10 @@ void BlockClassifier::ClassifyGroups(
   });
 }
 
-size_t BlockClassifier::Run(const MeshEvaluator& evaluator, BlockGrid& g, int classifyBegin,
+size_t BlockClassifier::Run(const Field& field, BlockGrid& g, int classifyBegin,
   int classifyEnd, int sampleBegin, bool slabOnly)
 {
-  BlockClassifier::ClassifyGroups(evaluator, g, classifyBegin, classifyEnd);
+  BlockClassifier::ClassifyGroups(field, g, classifyBegin, classifyEnd);
   if (slabOnly)
   {
     const size_t layer = size_t(g.Count[0]) * g.Count[1];
@@ -233,11 +253,11 @@ size_t BlockClassifier::Run(const MeshEvaluator& evaluator, BlockGrid& g, int cl
       undecided.push_back(static_cast<vtkIdType>(b));
     }
   }
-  ClassifyBlocks classify{ &evaluator, &g, &undecided };
+  ClassifyBlocks classify{ &field, &g, &undecided };
   std::unique_ptr<std::atomic<signed char>[]> corners;
-  // (Not for a field: a molecule's point evaluation costs more than the enclosures of
-  // a block it would spare, 16 × 1ubq classified in 39 ms with it and 36 ms without.)
-  if (evaluator.Kernel && !evaluator.Field)
+  // (Only with the product's fast paths: a molecule's point evaluation costs more than
+  // the enclosures of a block it would spare.)
+  if (field.GetProductKernel())
   {
     const size_t lattice = size_t(g.Count[0] + 1) * (g.Count[1] + 1) * (g.Count[2] + 1);
     corners.reset(new std::atomic<signed char>[lattice]);

@@ -6,7 +6,7 @@
 #define PiBlockClassifier_h
 
 #include "PiBlockGrid.h"
-#include "PiMeshEvaluator.h"
+#include "PiField.h"
 
 #include <cstddef>
 
@@ -18,14 +18,16 @@ public:
   /// Fills g.Sign for the block layers [classifyBegin, classifyEnd) along z (with
   /// `slabOnly`, the others are AbsentBlock; otherwise every layer is classified), then
   /// lists the active blocks from layer sampleBegin on in g.Active and g.Slot.
-  /// Returns how many blocks their groups left undecided.
-  static size_t Run(const MeshEvaluator& evaluator, BlockGrid& g, int classifyBegin,
+  /// Returns how many blocks their groups left undecided. With the field's product fast
+  /// paths (Field::GetProductKernel), the groups' octants come from the same expansions
+  /// and blocks whose corners differ in sign skip their enclosures.
+  static size_t Run(const Field& field, BlockGrid& g, int classifyBegin,
     int classifyEnd, int sampleBegin, bool slabOnly);
 
 private:
   // Groups of 4³ blocks and their quarters; blocks still undecided get the sign 2.
   static void ClassifyGroups(
-    const MeshEvaluator& evaluator, BlockGrid& g, int classifyBegin, int classifyEnd);
+    const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd);
 };
 }
 

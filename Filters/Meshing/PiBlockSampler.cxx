@@ -17,8 +17,8 @@ namespace
 // of neighbours stay finite (the sign of F is exact, whatever its magnitude).
 struct SampleBlocks
 {
-  const pisurf::ProductKernel* Kernel; // null when sampling Field
   const pisurf::Field* Field;
+  const pisurf::ProductKernel* Kernel; // the field's row restrictions, or null
   BlockGrid* G;
   const pisurf::LargeVector<vtkIdType>* RowIndex; // per row (j, k): its index in the coefficients
   const pisurf::LargeVector<double>* Coefficients;
@@ -43,7 +43,7 @@ struct SampleBlocks
       int c[3];
       this->G->BlockCoordinates(this->G->Active[s], c);
       double* v = this->G->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
-      if (this->Field)
+      if (!this->Kernel)
       {
         // A field that evaluates a whole box at once (bit for bit as point by point).
         int first[3], last[3];
@@ -240,10 +240,10 @@ struct SampleRows
 };
 }
 
-void BlockSampler::Run(const ProductKernel* kernel, const Field* field, BlockGrid& g,
-  const RowRestriction& rows, Buffer<double>& values, vtkAlgorithm* algorithm,
-  std::atomic<bool>& abort)
+void BlockSampler::Run(const Field& field, BlockGrid& g, const RowRestriction& rows,
+  Buffer<double>& values, vtkAlgorithm* algorithm, std::atomic<bool>& abort)
 {
+  const ProductKernel* kernel = field.GetProductKernel();
   // Every entry is written below: no need to clear.
   const size_t valueCount = g.Active.size() * BlockPoints * BlockPoints * BlockPoints;
   if (values.GetSize() < valueCount)
@@ -259,7 +259,7 @@ void BlockSampler::Run(const ProductKernel* kernel, const Field* field, BlockGri
   }
   else
   {
-    SampleBlocks sample{ kernel, field, &g, &rows.RowIndex, &rows.Coefficients, algorithm,
+    SampleBlocks sample{ &field, kernel, &g, &rows.RowIndex, &rows.Coefficients, algorithm,
       &abort };
     pisurf::ParallelFor(0, static_cast<vtkIdType>(g.Active.size()), 4, sample);
   }

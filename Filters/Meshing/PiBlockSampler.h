@@ -20,10 +20,11 @@ namespace pisurf
 class BlockSampler
 {
 public:
-  /// Samples `kernel` (or, without one, `field`) at the points of g's active blocks into
-  /// `values` (grown as needed), which g.Values then points to. `rows` holds pass 2's
-  /// restrictions. The single thread checks `algorithm` for a cancel and sets `abort`.
-  static void Run(const ProductKernel* kernel, const Field* field, BlockGrid& g,
+  /// Samples `field` at the points of g's active blocks into `values` (grown as needed),
+  /// which g.Values then points to: from pass 2's row restrictions `rows` where the
+  /// field has the product's fast paths, else box by box (Field::EvaluateBox) or point
+  /// by point. The single thread checks `algorithm` for a cancel and sets `abort`.
+  static void Run(const Field& field, BlockGrid& g,
     const RowRestriction& rows, Buffer<double>& values, vtkAlgorithm* algorithm,
     std::atomic<bool>& abort);
 };

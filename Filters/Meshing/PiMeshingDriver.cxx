@@ -34,10 +34,10 @@ MeshingDriver::MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, pisurf:
 
 MeshingDriver::~MeshingDriver() = default;
 
-MeshingDriver::Result MeshingDriver::Run(const MeshEvaluator& evaluator, BlockGrid& g,
+MeshingDriver::Result MeshingDriver::Run(const Field& field, BlockGrid& g,
   int piece, int pieces, const Settings& settings, vtkPolyData* output)
 {
-  this->Evaluator = &evaluator;
+  this->TheField = &field;
   this->G = &g;
   this->Options = settings;
   this->ChooseSlab(piece, pieces);
@@ -103,13 +103,13 @@ void MeshingDriver::ChooseSlab(int piece, int pieces)
 MeshingDriver::Result MeshingDriver::Sample()
 {
   BlockGrid& g = *this->G;
-  const ProductKernel* kernel = this->Evaluator->Kernel;
+  const ProductKernel* kernel = this->TheField->GetProductKernel();
   const bool distributed = this->Exchange != nullptr;
   vtkAlgorithm* const algorithm = this->Algorithm;
   pisurf::PassTimer& lap = this->Lap;
 
   // PASS 1: classify the blocks, coarse to fine.
-  const size_t undecided = BlockClassifier::Run(*this->Evaluator, g, this->ClassifyBegin,
+  const size_t undecided = BlockClassifier::Run(*this->TheField, g, this->ClassifyBegin,
     this->ClassifyEnd, this->SampleBegin, this->Slab.SlabOnly);
   algorithm->UpdateProgress(0.1);
   lap("classify");
@@ -147,8 +147,7 @@ MeshingDriver::Result MeshingDriver::Sample()
   // PASS 3: evaluate the points of the active blocks.
   if (!tooManyRows)
   {
-    BlockSampler::Run(kernel, this->Evaluator->Field, g, rows, this->Work.Values, algorithm,
-      this->Abort);
+    BlockSampler::Run(*this->TheField, g, rows, this->Work.Values, algorithm, this->Abort);
   }
   // 0: go on, 1: cancelled, 2: failed. With the pieces flooding together every
   // process must reach the flood, or none: a piece that stops here (an error of its
@@ -175,7 +174,7 @@ std::unique_ptr<OuterEnvelope> MeshingDriver::Envelope()
   {
     return nullptr;
   }
-  return OuterEnvelope::Build(*this->G, this->Slab, this->Evaluator->Field,
+  return OuterEnvelope::Build(*this->G, this->Slab, *this->TheField,
     this->Exchange.get(), this->Work.EnvelopeFree, this->Work.EnvelopeReached, this->Lap);
 }
 
@@ -201,7 +200,7 @@ MeshingDriver::Result MeshingDriver::PlaceVertices(
     gradientMagnitude->SetName("GradientMagnitude");
     pisurf::AllocateLargeArray(gradientMagnitude.GetPointer(), vertices);
   }
-  const VertexAttributes attributes{ this->Evaluator, this->G, &this->Work.VertexEdge,
+  const VertexAttributes attributes{ this->TheField, this->G, &this->Work.VertexEdge,
     &this->Work.VertexT, &this->Work.VertexEnds, vertices, &this->Work.Rows,
     this->Options.ProjectVertices, 1e-13 * this->Options.Size,
     envelope && envelope->GetOutside() > 0, points, normals, factor, gradientMagnitude,

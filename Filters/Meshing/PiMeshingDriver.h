@@ -7,7 +7,7 @@
 #define PiMeshingDriver_h
 
 #include "PiBlockGrid.h"
-#include "PiMeshEvaluator.h"
+#include "PiField.h"
 #include "PiMeshingWork.h"
 
 #include <atomic>
@@ -49,9 +49,10 @@ public:
   MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, pisurf::PassTimer& lap);
   ~MeshingDriver();
 
-  /// Meshes `evaluator` on g (Dims, Origin, Spacing and Count set) for piece `piece` of
-  /// `pieces` into `output`'s points, triangles and point data.
-  Result Run(const MeshEvaluator& evaluator, BlockGrid& g, int piece, int pieces,
+  /// Meshes `field` on g (Dims, Origin, Spacing and Count set) for piece `piece` of
+  /// `pieces` into `output`'s points, triangles and point data. The passes take the
+  /// field's product fast paths (Field::GetProductKernel) where it has them.
+  Result Run(const Field& field, BlockGrid& g, int piece, int pieces,
     const Settings& settings, vtkPolyData* output);
 
   /// The vertices of the last mesh.
@@ -72,7 +73,7 @@ private:
   vtkAlgorithm* Algorithm;
   MeshingWork& Work;
   pisurf::PassTimer& Lap;
-  const MeshEvaluator* Evaluator = nullptr;
+  const Field* TheField = nullptr;
   BlockGrid* G = nullptr;
   Settings Options{};
   PieceSlab Slab;

@@ -58,13 +58,14 @@ int OutsideSign(const BlockGrid& g, const PieceSlab& slab, PieceExchange* exchan
 }
 
 std::unique_ptr<OuterEnvelope> OuterEnvelope::Build(const BlockGrid& g, const PieceSlab& slab,
-  const Field* field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
+  const Field& field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
   Buffer<std::uint16_t>& reached, pisurf::PassTimer& lap)
 {
   const bool distributed = exchange != nullptr;
   const int slabBegin = slab.SlabBegin, slabEnd = slab.SlabEnd;
   std::unique_ptr<OuterEnvelope> envelope(
-    new OuterEnvelope(g, OutsideSign(g, slab, exchange), field, free, reached));
+    new OuterEnvelope(g, OutsideSign(g, slab, exchange),
+      field.HasOffOuterSide() ? &field : nullptr, free, reached));
   lap("envelope states");
   if (distributed)
   {

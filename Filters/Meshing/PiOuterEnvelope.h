@@ -39,9 +39,10 @@ public:
   /// (piece slab.Piece of slab.Pieces meshing together), each piece floods its slab and
   /// the pieces then flood on across their shared planes; without it, slab.SlabOnly
   /// still restricts the outside sign's count to the slab. `free` and `reached` are
-  /// the envelope's work arrays (kept between executions).
+  /// the envelope's work arrays (kept between executions). Where `field` can mark
+  /// points off the outer side (Field::HasOffOuterSide), the flood does not pass them.
   static std::unique_ptr<OuterEnvelope> Build(const BlockGrid& g, const PieceSlab& slab,
-    const Field* field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
+    const Field& field, PieceExchange* exchange, Buffer<std::uint16_t>& free,
     Buffer<std::uint16_t>& reached, pisurf::PassTimer& lap);
 
   // `field` (may be null) marks points of bounded positive components, which the flood

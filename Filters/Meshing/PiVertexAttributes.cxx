@@ -29,7 +29,8 @@ namespace
 // orders of magnitude along the edge.
 struct VertexWorker
 {
-  const MeshEvaluator* Kernel;
+  const Field* F;
+  const ProductKernel* Kernel; // the field's product fast paths, or null
   const BlockGrid* G;
   const pisurf::Buffer<vtkIdType>* VertexEdge;
   const pisurf::Buffer<double>* VertexT;
@@ -235,7 +236,6 @@ struct VertexWorker
     // A field that can certify the first root from the positive end in one pass (see
     // pisurf::Field::FirstRoot): the root nearest the outside, as the general method
     // below would pick.
-    if (this->Kernel->Field)
     {
       const bool bracket = (va > 0 && vb < 0) || (va < 0 && vb > 0);
       const bool thinWall = va > 0 && vb > 0 && (t == 0.0 || t == 1.0);
@@ -243,7 +243,7 @@ struct VertexWorker
       {
         const bool fromA = bracket ? va > 0 : t == 0.0;
         double s;
-        if (this->Kernel->Field->FirstRoot(fromA ? a : b, fromA ? b : a, this->Tolerance, s))
+        if (this->F->FirstRoot(fromA ? a : b, fromA ? b : a, this->Tolerance, s))
         {
           return fromA ? s : 1.0 - s;
         }
@@ -254,7 +254,7 @@ struct VertexWorker
     // sign(F)·ln(1 + |F|) is used instead.
     bool compressed = false;
     auto phi = [&](const double x[3]) {
-      return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);
+      return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x);
     };
     if (!(std::fabs(va) < 1e200 && std::fabs(vb) < 1e200))
     {
@@ -270,7 +270,7 @@ struct VertexWorker
     {
       ++axis;
     }
-    const pisurf::ProductKernel* kernel = this->Kernel->Field ? nullptr : this->Kernel->Kernel;
+    const pisurf::ProductKernel* kernel = this->Kernel;
     const double length = std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]) + std::fabs(b[2] - a[2]);
     if (row && kernel && !compressed && ((va < 0 && vb > 0) || (va > 0 && vb < 0)))
     {
@@ -293,7 +293,7 @@ struct VertexWorker
     bool compressed, int axis, const pisurf::ProductKernel* kernel, double length) const
   {
     auto phi = [&](const double x[3]) {
-      return compressed ? this->Kernel->EvaluateCompressed(x) : this->Kernel->Evaluate(x);
+      return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x);
     };
     auto pointAt = [&](double s, double x[3]) {
       for (int k = 0; k < 3; ++k)
@@ -326,7 +326,7 @@ struct VertexWorker
     auto offOuterSide = [&](double s) {
       double x[3];
       pointAt(s, x);
-      return this->Kernel->OffOuterSide(x);
+      return this->F->OffOuterSide(x);
     };
     // The root between s0 and s1 (either order), where F is f0 and f1 of opposite signs.
     auto rootBetween = [&](double s0, double f0, double s1, double f1) {
@@ -521,9 +521,9 @@ struct VertexWorker
   // not apply (the caller then takes the general path).
   bool Prepare(const Edge& e, Lane& lane) const
   {
-    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    const pisurf::ProductKernel* kernel = this->Kernel;
     const bool bracket = (e.Va < 0 && e.Vb > 0) || (e.Va > 0 && e.Vb < 0);
-    if (!this->Project || this->Kernel->Field || !kernel || !bracket ||
+    if (!this->Project || !kernel || !bracket ||
       !(std::fabs(e.Va) < 1e200 && std::fabs(e.Vb) < 1e200))
     {
       return false;
@@ -553,7 +553,7 @@ struct VertexWorker
   // F and dF/ds at the lane's s: RowNewton's and Newton's evaluations.
   bool EvaluateLane(const Lane& lane, double& v, double& slope) const
   {
-    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    const pisurf::ProductKernel* kernel = this->Kernel;
     const double s = lane.Newton.S;
     if (lane.Row)
     {
@@ -571,7 +571,7 @@ struct VertexWorker
   {
     // Star factors only: every lane at once, as vector lanes (ProductKernel::
     // EvaluateOnSegments), the finished ones too (their results unused).
-    const pisurf::ProductKernel* kernel = this->Kernel->Kernel;
+    const pisurf::ProductKernel* kernel = this->Kernel;
     const bool star = kernel->HasStarFactorsOnly();
     double a[MaxLanes][3], d[MaxLanes][3];
     for (int k = 0; star && k < count; ++k)
@@ -634,7 +634,7 @@ struct VertexWorker
   {
     double n[3], gradientNorm;
     int nearest;
-    this->Kernel->EvaluateVertex(x, n, gradientNorm, nearest);
+    this->F->EvaluateVertex(x, n, gradientNorm, nearest);
     this->Write(id, x, n, gradientNorm, nearest, out);
   }
 
@@ -666,9 +666,9 @@ struct VertexWorker
     const bool thinWall = ((va > 0 && vb > 0) || (va < 0 && vb < 0)) && (t == 0.0 || t == 1.0);
     pisurf::Field::EdgeVertex fast;
     double x[3];
-    if (this->Project && this->Kernel->Field && (bracket || thinWall) &&
+    if (this->Project && (bracket || thinWall) &&
       std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
-      this->Kernel->Field->RefineEdge(
+      this->F->RefineEdge(
         e.A, e.B, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
       !(this->PositiveEnvelope && fast.OffOuterSide))
     {
@@ -714,7 +714,7 @@ struct VertexWorker
       }
     }
     // (Lanes exist only for a product kernel.)
-    this->Kernel->Kernel->EvaluateVertices(count, x, n, gradientNorm, nearest);
+    this->Kernel->EvaluateVertices(count, x, n, gradientNorm, nearest);
     for (int j = 0; j < count; ++j)
     {
       this->Write(lanes[j].Id, x[j], n[j], gradientNorm[j], nearest[j], out);
@@ -779,9 +779,9 @@ struct VertexWorker
 
 void VertexAttributes::Run() const
 {
-  const ProductKernel* kernel = this->Evaluator->Kernel;
+  const ProductKernel* kernel = this->TheField->GetProductKernel();
   std::atomic<vtkIdType> done{ 0 };
-  VertexWorker worker{ this->Evaluator, this->G, this->VertexEdge, this->VertexT,
+  VertexWorker worker{ this->TheField, kernel, this->G, this->VertexEdge, this->VertexT,
     this->VertexEnds, this->Points, this->Normals, this->Factor, this->GradientMagnitude,
     this->Project, this->Tolerance, this->PositiveEnvelope, this->Algorithm, this->Abort, &done,
     this->Vertices, kernel ? &this->Rows->RowIndex : nullptr,

@@ -7,7 +7,7 @@
 
 #include "PiBlockGrid.h"
 #include "PiBuffer.h"
-#include "PiMeshEvaluator.h"
+#include "PiField.h"
 #include "PiRowRestriction.h"
 
 #include <atomic>
@@ -22,7 +22,7 @@ namespace pisurf
 {
 struct VertexAttributes
 {
-  const MeshEvaluator* Evaluator;
+  const Field* TheField;
   const BlockGrid* G;
   // Per vertex, from the contouring: edge key (point id · 3 + axis), crossing parameter
   // and F at the edge's two ends.
@@ -30,7 +30,7 @@ struct VertexAttributes
   const Buffer<double>* VertexT;
   const Buffer<double>* VertexEnds;
   vtkIdType Vertices;
-  // Pass 2's row restrictions (used for a product kernel only).
+  // Pass 2's row restrictions (used with the field's product fast paths only).
   const RowRestriction* Rows;
   bool Project;          // move each vertex to the root on its edge
   double Tolerance;      // stop when the bracket is shorter than this

@@ -1093,6 +1093,24 @@ double MoleculeField::EvaluateWithLog(const double p[3], double& logAbsF) const
   return this->Compute(p, logAbsF);
 }
 
+bool MoleculeField::ProbeVertex(const double p[3], double probe, double tolerance,
+  double normal[3], double& gradientNorm, int& nearest) const
+{
+  // ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
+  double logGradient;
+  this->EvaluateVertex(p, normal, gradientNorm, nearest, logGradient);
+  double logProbe = -HUGE_VAL;
+  for (int k = 0; k < 6; ++k)
+  {
+    double q[3] = { p[0], p[1], p[2] };
+    q[k / 2] += (k % 2 ? probe : -probe);
+    double logAbs;
+    this->EvaluateWithLog(q, logAbs);
+    logProbe = std::max(logProbe, logAbs);
+  }
+  return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
+}
+
 void MoleculeField::EvaluateVertex(const double p[3], double normal[3], double& gradientNorm,
   int& nearest, double& logGradientNorm) const
 {

@@ -139,13 +139,18 @@ public:
   /// sides of that crossing certify. Local mode drops an atom from a piece's halves once
   /// its influence no longer reaches the piece.
   void CastRay(const double o[3], const double d[3], double t0, double t1,
-    const RayRootOptions& options, std::vector<RayRoot>& roots) const;
+    const RayRootOptions& options, std::vector<RayRoot>& roots) const override;
+  /// The six probes' test in logarithms, with ln|∇F| from EvaluateVertex and ln|F| from
+  /// EvaluateWithLog: it holds at any size of the product.
+  bool ProbeVertex(const double p[3], double probe, double tolerance, double normal[3],
+    double& gradientNorm, int& nearest) const override;
   /// True inside any atom sphere (|p − c_i| < R_i), when the level is positive. On
   /// every sphere one factor vanishes (g_i = f_i there, in Local mode too), so P = 0 and
   /// F = −level < 0: no component of {F > 0} crosses a sphere. The outer one contains
   /// the far field, outside every sphere, so it and its closure (where P >= level > 0)
   /// stay outside every closed sphere.
   bool OffOuterSide(const double p[3]) const override;
+  bool HasOffOuterSide() const override { return true; }
   /// Global mode: the first atom sphere the segment enters at s1 (where P = 0 < level);
   /// if a lower bound of |P| over [0, s1 − ε] (the near atoms' exact minima on the
   /// segment, times the far atoms' minima over the cell's box grown by 1 Å, kept per

@@ -2,7 +2,7 @@
 #include "PiRayCaster.h"
 
 #include "PiFloat.h"
-#include "PiMoleculeField.h"
+#include "PiField.h"
 #include "PiProductKernel.h"
 
 #include <algorithm>
@@ -12,17 +12,17 @@
 namespace pisurf
 {
 
-RayCaster::RayCaster(const MoleculeField& molecule)
-  : Molecule(&molecule)
+RayCaster::RayCaster(const Field& field)
+  : TheField(&field)
+  , Kernel(field.GetProductKernel())
 {
-}
-
-RayCaster::RayCaster(const ProductKernel& kernel)
-  : Kernel(&kernel)
-{
-  for (size_t f = 0; f < kernel.GetNumberOfFactors(); ++f)
+  if (!this->Kernel)
   {
-    const Factor& factor = kernel.GetFactor(f);
+    return;
+  }
+  for (size_t f = 0; f < this->Kernel->GetNumberOfFactors(); ++f)
+  {
+    const Factor& factor = this->Kernel->GetFactor(f);
     if (factor.IsPolynomial)
     {
       this->Counts.push_back(std::max(factor.Polynomial.Poly.GetDegree(), 0) + 1);
@@ -35,12 +35,7 @@ void RayCaster::Cast(const double start[3], const double d[3], double length,
   const RayRootOptions& options, std::vector<RayRoot>& roots) const
 {
   roots.clear();
-  if (this->Molecule)
-  {
-    this->Molecule->CastRay(start, d, 0.0, length, options, roots);
-    return;
-  }
-  if (this->Kernel->IsPolynomial())
+  if (this->Kernel && this->Kernel->IsPolynomial())
   {
     thread_local std::vector<double> coefficients;
     coefficients.resize(this->Kernel->GetLineCoefficientCount());
@@ -49,23 +44,7 @@ void RayCaster::Cast(const double start[3], const double d[3], double length,
       this->Kernel->GetBlending(), 0.0, length, options, roots);
     return;
   }
-  // The documented fallback for non-polynomial factors: a sign scan and bisection.
-  const int n = 4096;
-  auto at = [&](double t) {
-    const double p[3] = { start[0] + t * d[0], start[1] + t * d[1], start[2] + t * d[2] };
-    return this->Kernel->EvaluateCompressed(p);
-  };
-  double ta = 0.0, va = at(0.0);
-  for (int s = 1; s <= n && (options.AllRoots || roots.empty()); ++s)
-  {
-    const double tb = length * s / n, vb = at(tb);
-    if ((va < 0) != (vb < 0))
-    {
-      roots.push_back({ BracketedRoot(at, ta, tb, va, vb, options.Tolerance, 0.0), false });
-    }
-    ta = tb;
-    va = vb;
-  }
+  this->TheField->CastRay(start, d, 0.0, length, options, roots);
 }
 
 void RayCaster::CastRestricted(const double* coefficients, double t0, double t1,
@@ -198,44 +177,6 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
   }
 }
 
-// Whether |∇F|·probe is at most `tolerance` times the largest of the six probe values
-// |F| = |mantissa|·2^exponent. The largest |F| is found on the scaled values (exponent
-// first, then mantissa: the same order as their magnitudes). Where |∇F| (`gradient`),
-// that largest value and both products are normal doubles they are compared directly;
-// otherwise in logarithms (no overflow).
-static bool ProbesSayZeroGradient(double gradient, double logGradient, double probe,
-  double tolerance, const double* mantissa, const long* exponent)
-{
-  double bestMantissa = 0.0;
-  long bestExponent = 0;
-  for (int a = 0; a < 6; ++a)
-  {
-    const double m = mantissa[a];
-    const long e = exponent[a];
-    if (m != 0.0 &&
-      (bestMantissa == 0.0 || e > bestExponent ||
-        (e == bestExponent && std::fabs(m) > bestMantissa)))
-    {
-      bestMantissa = std::fabs(m);
-      bestExponent = e;
-    }
-  }
-  if (bestMantissa != 0.0 && bestExponent > -900 && bestExponent < 900 &&
-    std::isnormal(gradient))
-  {
-    const double lhs = gradient * probe;
-    const double rhs = tolerance * pisurf::Ldexp(bestMantissa, static_cast<int>(bestExponent));
-    if (std::isnormal(lhs) && std::isnormal(rhs))
-    {
-      return lhs <= rhs;
-    }
-  }
-  const double logProbe = bestMantissa == 0.0
-    ? -std::numeric_limits<double>::infinity()
-    : std::log(bestMantissa) + static_cast<double>(bestExponent) * std::log(2.0);
-  return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
-}
-
 void RayCaster::PrepareProbes(const double box[6], double probe)
 {
   if (this->Kernel)
@@ -247,7 +188,7 @@ void RayCaster::PrepareProbes(const double box[6], double probe)
 bool RayCaster::Attributes(const double p[3], double probe, double tolerance, double normal[3],
   double& gradientNorm, int& nearest) const
 {
-  if (!this->Molecule && probe == this->Probes.Probe && probe > 0 &&
+  if (this->Kernel && probe == this->Probes.Probe && probe > 0 &&
     this->Kernel->EvaluateVertexIfRegular(
       p, this->Probes, tolerance, normal, gradientNorm, nearest))
   {
@@ -262,7 +203,7 @@ void RayCaster::Attributes(int count, const double (*p)[3], double probe, double
   // (Other products one point at a time from here, not through
   // EvaluateVerticesIfRegular's own fallback: that calls the single-point code from its
   // AVX2 clone.)
-  if (this->Molecule || !(probe == this->Probes.Probe && probe > 0) ||
+  if (!this->Kernel || !(probe == this->Probes.Probe && probe > 0) ||
     count > ProductKernel::MaxVertices || !this->Kernel->HasStarFactorsOnly())
   {
     for (int j = 0; j < count; ++j)
@@ -286,27 +227,7 @@ void RayCaster::Attributes(int count, const double (*p)[3], double probe, double
 bool RayCaster::ProbedAttributes(const double p[3], double probe, double tolerance,
   double normal[3], double& gradientNorm, int& nearest) const
 {
-  if (this->Molecule)
-  {
-    // The same test in logarithms: ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
-    double logGradient;
-    this->Molecule->EvaluateVertex(p, normal, gradientNorm, nearest, logGradient);
-    double logProbe = -HUGE_VAL;
-    for (int k = 0; k < 6; ++k)
-    {
-      double q[3] = { p[0], p[1], p[2] };
-      q[k / 2] += (k % 2 ? probe : -probe);
-      double logAbs;
-      this->Molecule->EvaluateWithLog(q, logAbs);
-      logProbe = std::max(logProbe, logAbs);
-    }
-    return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
-  }
-  double logGradient, mantissa[6];
-  long exponent[6];
-  this->Kernel->EvaluateVertexStar(
-    p, probe, normal, gradientNorm, nearest, logGradient, mantissa, exponent);
-  return ProbesSayZeroGradient(gradientNorm, logGradient, probe, tolerance, mantissa, exponent);
+  return this->TheField->ProbeVertex(p, probe, tolerance, normal, gradientNorm, nearest);
 }
 
 }

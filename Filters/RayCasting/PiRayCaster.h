@@ -4,14 +4,18 @@
  * shared core of vtkPiRayCaster (which casts every pixel) and vtkPiImageTriangulator
  * (which casts the few lattice lines its views could not see). No VTK here.
  *
- * Polynomial products are restricted exactly to the ray and their roots certified by
- * FindRayRoots (PiRayRoots.h). Products with a non-polynomial factor fall back to a sign
- * scan of 4096 samples with bisection: such a scan can miss features thinner than one
- * sample, and it says so in the algorithms' documentation.
+ * The caster works on a Field. Where the field offers the product's fast paths
+ * (Field::GetProductKernel), polynomial products are restricted exactly to the ray and
+ * their roots certified by FindRayRoots (PiRayRoots.h), and hits are attributed four at
+ * a time; otherwise the field casts the ray itself (Field::CastRay: a molecule
+ * certifies its roots; the general answer, used for products with a non-polynomial
+ * factor, is a sign scan of 4096 samples with bisection, which can miss features
+ * thinner than one sample, as the algorithms' documentation says).
  */
 #ifndef PiRayCaster_h
 #define PiRayCaster_h
 
+#include "PiField.h"
 #include "PiProductKernel.h"
 #include "PiRayRoots.h"
 
@@ -19,23 +23,21 @@
 
 namespace pisurf
 {
-class MoleculeField;
 
-/// Casts rays at one product. Reentrant: several threads may cast with one caster.
+/// Casts rays at one field, which must outlive the caster. Reentrant: several threads
+/// may cast with one caster.
 class RayCaster
 {
 public:
-  explicit RayCaster(const ProductKernel& kernel);
-  /// Casts at a molecule's field (MoleculeField::CastRay), whatever its size or mode.
-  explicit RayCaster(const MoleculeField& molecule);
+  explicit RayCaster(const Field& field);
 
   /// Roots of F(start + t·d) on [0, length], in increasing t (d need not be unit; t is
   /// then in units of |d|). `options.AllRoots` false stops at the first.
   void Cast(const double start[3], const double d[3], double length,
     const RayRootOptions& options, std::vector<RayRoot>& roots) const;
 
-  /// The attributes of a surface point in one pass (ProductKernel::EvaluateVertexStar):
-  /// unit normal, |∇F|, nearest factor; returns whether it is singular, i.e. whether
+  /// The attributes of a surface point (Field::ProbeVertex): unit normal, |∇F|, nearest
+  /// factor; returns whether it is singular, i.e. whether
   /// the gradient vanishes at p on the scale `probe`: |∇F|·probe is at most `tolerance`
   /// times the largest |F| at the six points p ± probe·e_i. Scale-free, so it holds for
   /// products whose |∇F| varies by orders of magnitude over the surface.
@@ -65,12 +67,12 @@ public:
   size_t GetLineCoefficientCount() const { return this->LineCoefficients; }
 
 private:
-  // Attributes without the shortcut: the six probes (or the molecule's test).
+  // Attributes without the shortcut: the field's six probes.
   bool ProbedAttributes(const double p[3], double probe, double tolerance, double normal[3],
     double& gradientNorm, int& nearest) const;
 
-  const ProductKernel* Kernel = nullptr;
-  const MoleculeField* Molecule = nullptr;
+  const Field* TheField;
+  const ProductKernel* Kernel; // the field's fast paths, or null
   ProductKernel::ProbeBounds Probes; // Probe 0: not prepared
   std::vector<int> Counts; // line coefficients per polynomial factor
   size_t LineCoefficients = 0;

@@ -151,10 +151,10 @@ struct Triangulation
   vtkPiImageTriangulator* Algorithm;
   Cloud C;
   std::vector<View> Views;
-  // The model: a product (PiSurfaceModel), or a molecule's field (pisurf::InputSurface.h), or
-  // neither (all-hits views need none).
-  std::shared_ptr<const pisurf::ProductKernel> Kernel;
-  std::unique_ptr<pisurf::MoleculeField> Molecule;
+  // The model (pisurf::InputSurface::MakeField: a product or a molecule's field), or
+  // null (all-hits views need none); Kernel: its product fast paths, or null.
+  std::shared_ptr<const pisurf::Field> Model;
+  const pisurf::ProductKernel* Kernel = nullptr;
   std::unique_ptr<pisurf::RayCaster> Caster;
   double Size = 1;
   std::vector<std::vector<std::int64_t>> Rows; // output keys, three per triangle, by row
@@ -195,26 +195,20 @@ struct Triangulation
   int Sign(const double p[3]) const
   {
     double logAbs;
-    if (this->Molecule)
-    {
-      return this->Molecule->Evaluate(p) >= 0 ? 1 : 0;
-    }
-    return this->Kernel ? (this->Kernel->EvaluateSignAndLog(p, logAbs) >= 0 ? 1 : 0) : 1;
+    return this->Model ? (this->Model->EvaluateSignAndLog(p, logAbs) >= 0 ? 1 : 0) : 1;
   }
 
   // +1/−1: F has that sign on the whole box; 0: it may vanish there (or no model).
   int Classify(const double box[6]) const
   {
-    return this->Kernel ? this->Kernel->ClassifyBox(box)
-                        : this->Molecule ? this->Molecule->ClassifyBox(box) : 1;
+    return this->Model ? this->Model->ClassifyBox(box) : 1;
   }
 
   // sign(F)·ln(1 + |F|) (a model is there).
   double Compressed(const double p[3]) const
   {
-    return this->Kernel ? this->Kernel->EvaluateCompressed(p) : this->Molecule->EvaluateCompressed(p);
+    return this->Model->EvaluateCompressed(p);
   }
-
 };
 
 } // namespace triangulator

@@ -245,13 +245,12 @@ bool TriangulationInput::ReadModel(vtkPolyData* input, Triangulation& T)
   }
   if (molecule.Present)
   {
-    T.Molecule = molecule.MakeField(molecule.Bounds, moleculeError);
-    if (!T.Molecule)
+    T.Model = molecule.MakeField(molecule.Bounds, moleculeError);
+    if (!T.Model)
     {
       vtkErrorWithObjectMacro(T.Algorithm, << moleculeError);
       return false;
     }
-    T.Caster.reset(new pisurf::RayCaster(*T.Molecule));
   }
   else if (json && json->GetNumberOfValues() > 0)
   {
@@ -260,8 +259,18 @@ bool TriangulationInput::ReadModel(vtkPolyData* input, Triangulation& T)
       vtkErrorWithObjectMacro(T.Algorithm, << "Invalid PiSurfaceModel: " << this->Surface->GetErrorMessage());
       return false;
     }
-    T.Kernel = this->Surface->GetKernel();
-    T.Caster.reset(new pisurf::RayCaster(*T.Kernel));
+    std::shared_ptr<const pisurf::ProductKernel> kernel = this->Surface->GetKernel();
+    if (!kernel)
+    {
+      vtkErrorWithObjectMacro(T.Algorithm, << "Invalid PiSurfaceModel: it has no product");
+      return false;
+    }
+    T.Model = std::make_shared<pisurf::ProductField>(std::move(kernel));
+  }
+  if (T.Model)
+  {
+    T.Kernel = T.Model->GetProductKernel();
+    T.Caster.reset(new pisurf::RayCaster(*T.Model));
   }
   return true;
 }

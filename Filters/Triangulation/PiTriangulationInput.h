@@ -18,7 +18,7 @@ namespace pisurf
 namespace triangulator
 {
 
-// Fills T.Views, T.C, the model (T.Kernel or T.Molecule, and T.Caster) and T.Size; keeps
+// Fills T.Views, T.C, the model (T.Model, T.Kernel and T.Caster) and T.Size; keeps
 // what the output passes on (the model's field data) and the box of the scene.
 class TriangulationInput
 {

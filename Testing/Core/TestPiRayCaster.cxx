@@ -3,6 +3,7 @@
 // and its shortcut (ProductKernel::EvaluateVertexIfRegular), which skips the six probes
 // only where they could not have said "singular".
 #include "PiModel.h"
+#include "PiProductField.h"
 #include "PiProductKernel.h"
 #include "PiRayCaster.h"
 #include "PiCoreTestUtilities.h"
@@ -19,6 +20,15 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+namespace
+{
+// The field of a kernel the test keeps (an empty owner: the kernel is not deleted).
+pisurf::ProductField Unowned(const pisurf::ProductKernel& k)
+{
+  return pisurf::ProductField(std::shared_ptr<const pisurf::ProductKernel>(std::shared_ptr<void>(), &k));
+}
+}
 
 using namespace pisurf;
 using pisurf_test::SameBits;
@@ -270,7 +280,8 @@ TEST(RayCast, PreparedProbesKeepTheSingularCurve)
     f.Polynomial.PrepareIntervals();
   }
   const ProductKernel k(factors, 0.0);
-  RayCaster plain(k), prepared(k);
+  const ProductField field = Unowned(k);
+  RayCaster plain(field), prepared(field);
   const double box[6] = { -2, 2, -2, 2, -2, 2 };
   const double h = 1e-3 * std::sqrt(48.0);
   prepared.PrepareProbes(box, h);
@@ -313,7 +324,8 @@ TEST(RayCast, HitsFourAtATimeHaveTheSingleHitAnswers)
     const double h = 1e-3 *
       std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
         (b[5] - b[4]) * (b[5] - b[4]));
-    RayCaster caster(k);
+    const ProductField field = Unowned(k);
+    RayCaster caster(field);
     caster.PrepareProbes(b, h);
     const ProductKernel::ProbeBounds bounds = k.PrepareProbes(b, h);
     for (int group = 0; group < 300; ++group)
