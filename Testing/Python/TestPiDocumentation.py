@@ -10,12 +10,13 @@
    heading of the same level or higher) must name each property of the proxy, inherited
    ones included, in backquotes (`Resolution`). Names, not labels: pvpython spells them
    so, and the XML's labels are derived from them.
-2. The runnable examples run. Every ```python run block of README.md and
-   Documentation/paraview-tutorial.md is executed, block after block in one namespace
-   per file (a later block may use an earlier one's names), in a scratch folder whose
+2. The runnable examples run. Every ```python run block of README.md and of the pages
+   of Documentation/ is executed (README.md and paraview-tutorial.md must have some),
+   block after block in one namespace per file (a later block may use an earlier one's names), in a scratch folder whose
    Testing/ links to the source tree's (the examples name paths relative to the
    repository's root, as a user runs them). A block fails on an exception or on an
-   ERROR that VTK reports while it runs. Plain ```python blocks are shown, not run.
+   ERROR that VTK reports while it runs; then every pipeline the page built is updated,
+   and must report no ERROR either. Plain ```python blocks are shown, not run.
 3. The ```cpp blocks of README.md compile (syntax and types, with the include folders
    CMake passes; not linked), when a compiler is given.
 
@@ -36,8 +37,12 @@ from pitesting import check, finish
 
 SOURCE = os.path.abspath(sys.argv[1])
 GUIDE = os.path.join(SOURCE, "Documentation", "user-guide.md")
-RUNNABLE = [os.path.join(SOURCE, "README.md"),
-            os.path.join(SOURCE, "Documentation", "paraview-tutorial.md")]
+README = os.path.join(SOURCE, "README.md")
+TUTORIAL = os.path.join(SOURCE, "Documentation", "paraview-tutorial.md")
+# Pages that must hold runnable blocks; any other page of Documentation/ may.
+REQUIRED = [README, TUTORIAL]
+RUNNABLE = REQUIRED + sorted(set(glob.glob(os.path.join(SOURCE, "Documentation", "*.md")))
+                             - set(REQUIRED))
 
 
 # --- 1. Every proxy and property in the user guide -------------------------------------
@@ -153,7 +158,10 @@ def run_python_blocks():
             if not os.path.exists(path):
                 continue
             found = blocks(path, "```python run")
-            check(found, "%s has no ```python run block" % os.path.relpath(path, SOURCE))
+            check(found or path not in REQUIRED,
+                  "%s has no ```python run block" % os.path.relpath(path, SOURCE))
+            if not found:
+                continue
             simple.ResetSession()
             namespace = {"__name__": "__doc_example__"}
             for line, code in found:
@@ -173,6 +181,20 @@ def run_python_blocks():
                 ran += 1
                 check(error is None, "%s: the block raised\n%s" % (where, error))
                 check("ERROR" not in text, "%s: VTK reported an error:\n%s" % (where, text[:1500]))
+            # A block may build a pipeline without executing it: update everything the
+            # page made, so an error in a filter's settings shows too.
+            window = vtkStringOutputWindow()
+            vtkOutputWindow.SetInstance(window)
+            try:
+                for proxy in simple.GetSources().values():
+                    proxy.UpdatePipeline()
+            finally:
+                vtkOutputWindow.SetInstance(original)
+            text = window.GetOutput()
+            if isinstance(text, bytes):
+                text = text.decode("utf-8", "replace")
+            check("ERROR" not in text, "%s: VTK reported an error updating its pipelines:\n%s"
+                  % (os.path.relpath(path, SOURCE), text[:1500]))
     finally:
         os.chdir(here)
         shutil.rmtree(scratch, ignore_errors=True)
@@ -182,7 +204,7 @@ def run_python_blocks():
 # --- 3. The C++ blocks compile ---------------------------------------------------------
 
 def compile_cpp_blocks(compiler, include_dirs):
-    found = blocks(RUNNABLE[0], "```cpp")
+    found = blocks(README, "```cpp")
     for line, code in found:
         with tempfile.NamedTemporaryFile("w", suffix=".cxx", delete=False) as f:
             f.write(code)
