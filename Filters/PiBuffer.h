@@ -27,20 +27,12 @@ namespace pisurf
 /// kernel's ordinary 4 KiB pages. Every first touch of a page is a fault that the kernel
 /// serves by zeroing it.
 ///
-/// These blocks were aligned to 2 MiB and advised to transparent huge pages until
-/// 2026-12-01 (one fault per 2 MiB). On the 2-core virtual machine the benchmarks run
-/// on, huge pages then took longer to fault in than 4 KiB pages: 1 GiB first touched at
-/// 0.36–0.92 GB/s against 1.34–1.58 GB/s. A huge page is carved from a large free
-/// block, which there is memory the guest has not touched since it booted (the host
-/// backs it on that first touch); 4 KiB pages come back from what was freed recently.
-/// First executions, huge pages against 4 KiB pages: vtkPiSampleFunction on the cup at
-/// 256³ 130–295 ms against 73–84 ms, vtkPiFlyingEdges 275–298 ms against 131–161 ms,
-/// the first all-hits cast of 10 spheres at 1024² 1.58–2.0 s against 1.35–1.52 s,
-/// Molecular Pi Surface (Local, a new filter each time) on 16 copies of 1ubq 0.80–0.94 s
-/// against 0.68–0.78 s and on 166 copies 8.8–9.4 s against 7.1–7.9 s.
+/// The blocks are not advised to transparent huge pages: on the benchmark host huge
+/// pages took longer to fault in than 4 KiB pages (the measurements are in
+/// Documentation/benchmark-history.md, "Huge pages").
 ///
-/// The kernel zeroes every fresh page (about a tenth of a second per 100 MB here: an
-/// all-hits cast's output). So large blocks given back with
+/// The kernel zeroes every fresh page (a cost that grows with the size: an all-hits
+/// cast's output is about 100 MB). So large blocks given back with
 /// ReleaseLarge are kept, up to LargeCacheBytes in all (oldest dropped first), and a
 /// later request of the same size class (at most twice the rounded size) takes one of
 /// them back, already faulted in: the next execution of a filter reuses its previous

@@ -108,9 +108,8 @@
  * grid centre and the middle of the box, which is also more accurate than restricting
  * at the ray start); the octree above skips empty space; rows are threaded with
  * vtkSMPTools. `PISURF_TIMING=1` prints the CPU time of each pass and how many depth
- * ranges are searched. On the cup at 1024² (−Y view): about 4.3 M first-hit rays per
- * second on one core and 8 M on two (issue 4 asks for 6 M on two; see the ray
- * benchmark in the README).
+ * ranges are searched. Its rays per second are measured by `./run bench`
+ * (Documentation/benchmarks.md).
  *
  * @sa vtkPiSurface vtkPiFlyingEdges
  */

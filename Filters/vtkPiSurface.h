@@ -25,8 +25,8 @@
  * clamping.
  *
  * Models: SetModelJSON/GetModelJSON/LoadModel read and write the .pisurf format
- * (JSON, version 1; see the README). An invalid model returns false with an error that
- * names the key or the position, and leaves the function unchanged.
+ * (JSON, version 1; see Documentation/pisurf-format.md). An invalid model returns false
+ * with an error that names the key or the position, and leaves the function unchanged.
  *
  * @warning Evaluation is reentrant (vtkSMPTools workers may share one vtkPiSurface).
  * Do not add factors or change parameters while other threads evaluate.

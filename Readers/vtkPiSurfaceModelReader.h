@@ -3,10 +3,10 @@
  * @class vtkPiSurfaceModelReader
  * @brief reads a .pisurf model and meshes its Pi-surface
  *
- * Reads a .pisurf model file (JSON, version 1: see the README) into a vtkPiSurface and
- * meshes F = 0: it is a vtkPiSurfaceSource whose model comes from FileName, so it has
- * OverrideBlending/Blending and all the mesher's settings (Bounds, Resolution,
- * OuterEnvelope, ProjectVertices, primitives on port 1). The output carries `Normals`,
+ * Reads a .pisurf model file (JSON, version 1: Documentation/pisurf-format.md) into a
+ * vtkPiSurface and meshes F = 0: it is a vtkPiSurfaceSource whose model comes from
+ * FileName, so it has OverrideBlending/Blending and all the mesher's settings (Bounds,
+ * Resolution, OuterEnvelope, ProjectVertices, primitives on port 1). The output carries `Normals`,
  * `Factor` and the model JSON as the field-data string `PiSurfaceModel`, so downstream
  * filters can rebuild the exact function.
  *

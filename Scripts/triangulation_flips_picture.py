@@ -1,4 +1,4 @@
-"""The picture of EdgeFlipRounds in the README: the cup's six axis views at 128 x 128
+"""The picture of EdgeFlipRounds in the user guide: the cup's six axis views at 128 x 128
 pixels triangulated without flips (left) and with the default one round (right), the
 same close-up of the handle and the rim, shaded by |F|/|grad F| at the triangles'
 centroids (how far each triangle leaves the surface).

@@ -4,7 +4,7 @@
  * @brief the algebraic primitives: their parameters, validation and exact polynomials
  *
  * A primitive is a polynomial in local coordinates (u, v, w) = R·(p − center), w along
- * the primitive's axis. Canonical forms (see the README's table):
+ * the primitive's axis. Canonical forms (Documentation/pisurf-format.md):
  *   sphere               u²+v²+w² − R²
  *   ellipsoid            (u/a)²+(v/b)²+(w/c)² − 1
  *   superellipsoid       (u/a)^n+(v/b)^n+(w/c)^n − 1        n even, >= 2

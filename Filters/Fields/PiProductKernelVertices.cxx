@@ -597,8 +597,8 @@ ProductKernel::ProbeBounds ProductKernel::PrepareProbes(const double box[6], dou
 // EvaluateVertexIfRegular's slack for p: the bounds' row of the cell of their box that
 // holds p (null where p is outside the box, or the bounds are not for these factors).
 // (This and RegularFromBounds are inlined: called from EvaluateVerticesIfRegular's AVX2
-// clone as functions of their own, the four-point path took longer than four single
-// points, 80 against 70 ms for 400 000 points of the cup; inlined, 25 ms.)
+// clone as functions of their own, the four-point path is slower than four single
+// points; Documentation/benchmark-history.md has the timings.)
 __attribute__((always_inline)) static inline const double* ProbeSlack(
   const ProductKernel::ProbeBounds& bounds, size_t factors, const double p[3])
 {

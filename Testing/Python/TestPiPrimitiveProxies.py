@@ -1,4 +1,4 @@
-"""Pi Primitive, Pi Product and the .pisurf writer from pvpython (issue 7): XML defaults
+"""Pi Primitive, Pi Product and the .pisurf writer from pvpython: XML defaults
 are the C++ defaults; every primitive type meshes; bad values are errors with empty
 output; a product of primitives is the Pi Surface of the same model; the writer round
 trips through the model reader; a .pvsm state and a Python trace replay to the same
@@ -205,7 +205,7 @@ bad.Bounds = [0] * 6
 bad.UpdatePipeline()
 check(bad.GetDataInformation().GetNumberOfCells() > 0 and not errors.take(), "recovers")
 
-# --- A refused value keeps the last valid surface (issue 7) --------------------------------
+# --- A refused value keeps the last valid surface -----------------------------------------
 # Pi Primitive: a torus, then a negative minor radius: the error is reported and the
 # torus stays (same mesh, same model); a valid value re-meshes.
 keep = PiPrimitive(Type="Torus", MinorRadius=0.3, Resolution=24)

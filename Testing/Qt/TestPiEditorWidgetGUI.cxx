@@ -315,7 +315,7 @@ int main(int argc, char* argv[])
       "a typed rotation of 90 degrees about x turns the box: " << Str3(euler));
     apply();
   }
-  // The picture for the README: the editor and the box widget on the ellipsoid, seen
+  // The picture for the user guide: the editor and the box widget on the ellipsoid, seen
   // from above the x-z plane.
   vtkCamera* camera = renderViewProxy->GetActiveCamera();
   camera->Azimuth(30);

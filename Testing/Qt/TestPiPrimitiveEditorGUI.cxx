@@ -155,7 +155,7 @@ int main(int argc, char* argv[])
 
   if (argc > 2)
   {
-    // A picture of the editor with the refused field, for the README.
+    // A picture of the editor with the refused field, for the user guide.
     QCoreApplication::processEvents();
     panel.grab().save(QString(argv[2]) + "/PiPrimitiveEditor.png");
   }

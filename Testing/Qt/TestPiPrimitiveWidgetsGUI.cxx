@@ -10,7 +10,7 @@
 // type, picked in the panel before Apply: its Placement group shows the expected widget,
 // the view shows that widget and no other, and only that type's own parameters show;
 // the sphere's widget, dragged, moves the sphere. Writes PiPrimitiveBox.png (the
-// README's picture) into the picture folder when given one.
+// user guide's picture) into the picture folder when given one.
 #include "PiQtTestUtilities.h"
 #include "PiModel.h"
 
@@ -160,7 +160,7 @@ int main(int argc, char* argv[])
         Near(std::abs(e.RotationAxis[2]), 1, 1e-9),
       "the output's model is the ellipsoid turned 75 degrees about z (angle "
         << e.RotationAngle << ", axis " << Str3(e.RotationAxis) << ")");
-    // The README's picture: the panel and the turned box around the turned ellipsoid.
+    // The user guide's picture: the panel and the turned box around the turned ellipsoid.
     if (argc > 2)
     {
       window.resize(1000, 640);
