@@ -6,8 +6,10 @@ depend on what else the machine runs. Compare two builds with it:
 
 Each workload runs in its own process on one thread; the count of the same process
 doing nothing but the set-up is subtracted (for the triangulation, the set-up includes
-its input: the six axis views cast at 128²). PISURF_COUNT_KINDS chooses the workloads
-(default "mesh cast triangulate"). Needs valgrind.
+its input: the six axis views cast at 128²; for the molecule, reading 1ubq).
+PISURF_COUNT_KINDS chooses the workloads (default "mesh cast triangulate molecule":
+the molecule kind meshes 1ubq at spacing 0.5 Å in Global and Local mode). Needs
+valgrind.
 """
 import os
 import re
@@ -20,10 +22,14 @@ MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Testing
 WORKLOAD = r"""
 import sys
 from pisurfaces import (vtkPiSurface, vtkPiPrimitive, vtkPiFlyingEdges, vtkPiRayCaster,
-                        vtkPiImageTriangulator)
+                        vtkPiImageTriangulator, vtkPiMoleculeReader, vtkPiMoleculeSurface)
 kind, model = sys.argv[1], sys.argv[2]
 s = vtkPiSurface()
-if model == "10_spheres":
+if model.startswith("1ubq"):
+    reader = vtkPiMoleculeReader()
+    reader.SetFileName("/usr/share/freesasa/test-data/1ubq.pdb")
+    reader.Update()
+elif model == "10_spheres":
     keep = []
     for i in range(10):
         p = vtkPiPrimitive()
@@ -57,6 +63,11 @@ elif kind.endswith("triangulate"):
     if kind == "triangulate":
         a = vtkPiImageTriangulator()
         a.SetInputData(c.GetOutput())
+elif kind == "molecule":
+    a = vtkPiMoleculeSurface()
+    a.SetInputConnection(reader.GetOutputPort())
+    a.SetMode(1 if model == "1ubq_local" else 0)
+    a.SetSpacing(0.5)
 if a is not None:
     a.Update()
 """
@@ -78,8 +89,10 @@ def main():
     builds = sys.argv[1:]
     if not builds:
         sys.exit(__doc__)
-    kinds = os.environ.get("PISURF_COUNT_KINDS", "mesh cast triangulate").split()
-    rows = [(kind, model) for kind in kinds for model in ("cup_a1.0", "table", "10_spheres")]
+    kinds = os.environ.get("PISURF_COUNT_KINDS", "mesh cast triangulate molecule").split()
+    rows = [(kind, model) for kind in kinds
+            for model in (("1ubq_global", "1ubq_local") if kind == "molecule"
+                          else ("cup_a1.0", "table", "10_spheres"))]
     header = "| workload | " + " | ".join("build %d (M instr.)" % (i + 1)
                                          for i in range(len(builds)))
     print(header + (" | change |" if len(builds) == 2 else " |"))

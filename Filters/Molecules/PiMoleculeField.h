@@ -221,7 +221,7 @@ private:
   void LocalVertex(const double p[3], const int* atoms, size_t count, double normal[3],
     double& gradientNorm, int& nearest, bool* inside) const;
   double ComputeExact(const double p[3], double& logAbsF) const;
-  // CastRay's search along one ray, chunk by chunk (see PiMolecule.cxx).
+  // CastRay's search along one ray, chunk by chunk (see PiMoleculeFieldRays.cxx).
   struct RaySearch;
 
   std::vector<double> Centers;
