@@ -11,10 +11,17 @@
 //   double range (clamped to ±DBL_MAX, never inf or NaN);
 // - EvaluateVertex's normal agrees with finite differences of F;
 // - RefineEdge and FirstRoot, where answered, bracket a true sign change of F within
-//   their tolerance.
+//   their tolerance;
+// - ClassifyBoxAndOctants is never wrong on the box nor on any octant it decides;
+// - EvaluateSignAndLog gives F's sign and ln|F| where F is a normal double;
+// - CastRay finds a root in every interval where F changes sign between samples of
+//   the ray (at 1/1024 of its length), in increasing order and inside the segment;
+// - ProbeVertex gives EvaluateVertex's attributes and says regular at most points
+//   where |F| is small against |∇F|·probe.
 #include "PiCoreTestUtilities.h"
 #include "PiModel.h"
 #include "PiMoleculeField.h"
+#include "PiPolynomial.h"
 #include "PiProductField.h"
 
 #include <gtest/gtest.h>
@@ -410,6 +417,179 @@ TEST_P(FieldConformance, RootsBracketASignChange)
   }
   // Fields that answer neither keep the defaults, which say false: nothing to check.
   SUCCEED() << refined << " edges refined, " << first << " first roots";
+}
+
+// Dense sampling of `box` (9³ points) agrees with `sign`.
+::testing::AssertionResult SignHoldsOn(const FieldCase& c, const double box[6], int sign)
+{
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j)
+      for (int k = 0; k <= 8; ++k)
+      {
+        const double p[3] = { box[0] + (box[1] - box[0]) * i / 8.0,
+          box[2] + (box[3] - box[2]) * j / 8.0, box[4] + (box[5] - box[4]) * k / 8.0 };
+        if (Sign(c.Field->Evaluate(p)) != sign)
+        {
+          return ::testing::AssertionFailure()
+            << "F = " << c.Field->Evaluate(p) << " where the sign " << sign << " was claimed";
+        }
+      }
+  return ::testing::AssertionSuccess();
+}
+
+TEST_P(FieldConformance, OctantClassificationIsNeverWrong)
+{
+  const FieldCase& c = this->Field();
+  Random random(6);
+  int decidedOctants = 0;
+  for (int n = 0; n < 200; ++n)
+  {
+    const Point centre = InRegion(random, c.Region);
+    const double half = c.Scale * random.Uniform(0.005, 0.1);
+    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half,
+      centre[1] + half, centre[2] - half, centre[2] + half };
+    for (const bool all : { false, true })
+    {
+      int octants[8];
+      const int sign = c.Field->ClassifyBoxAndOctants(box, octants, all);
+      if (sign != 0)
+      {
+        ASSERT_TRUE(SignHoldsOn(c, box, sign)) << c.Name << ": box " << n;
+        continue;
+      }
+      for (int o = 0; o < 8; ++o)
+      {
+        if (octants[o] == 0)
+        {
+          if (!all)
+          {
+            break; // the octants after the first undecided one are not asked for
+          }
+          continue;
+        }
+        double sub[6];
+        pisurf::OctantBox(box, o, sub);
+        ASSERT_TRUE(SignHoldsOn(c, sub, octants[o])) << c.Name << ": box " << n << " octant " << o;
+        ++decidedOctants;
+      }
+    }
+  }
+  EXPECT_GT(decidedOctants, 10) << c.Name << ": some octants of undecided boxes are decided";
+}
+
+TEST_P(FieldConformance, SignAndLogAgreeWithTheValue)
+{
+  const FieldCase& c = this->Field();
+  Random random(7);
+  int compared = 0;
+  for (int n = 0; n < 3000; ++n)
+  {
+    const Point p = InRegion(random, c.Region);
+    const double f = c.Field->Evaluate(p.data());
+    double logAbs;
+    const int sign = c.Field->EvaluateSignAndLog(p.data(), logAbs);
+    ASSERT_EQ(sign, Sign(f)) << c.Name << " at " << p[0] << " " << p[1] << " " << p[2];
+    ASSERT_FALSE(std::isnan(logAbs)) << c.Name;
+    if (std::fabs(f) > 1e-300 && std::fabs(f) < 1e300)
+    {
+      ASSERT_NEAR(logAbs, std::log(std::fabs(f)), 1e-9 * std::max(1.0, std::fabs(logAbs)))
+        << c.Name;
+      ++compared;
+    }
+  }
+  if (c.InRange)
+  {
+    EXPECT_GT(compared, 100) << c.Name;
+  }
+}
+
+TEST_P(FieldConformance, CastRayFindsEverySignChange)
+{
+  const FieldCase& c = this->Field();
+  Random random(8);
+  pisurf::RayRootOptions options;
+  options.Tolerance = 1e-9;
+  options.AllRoots = true;
+  std::vector<pisurf::RayRoot> roots;
+  int changes = 0;
+  for (int n = 0; n < 40; ++n)
+  {
+    // A ray across the region: from a point on one face to a point on the opposite one.
+    const int axis = n % 3;
+    Point o = InRegion(random, c.Region), e = InRegion(random, c.Region);
+    o[axis] = c.Region[2 * axis];
+    e[axis] = c.Region[2 * axis + 1];
+    const double d[3] = { e[0] - o[0], e[1] - o[1], e[2] - o[2] };
+    c.Field->CastRay(o.data(), d, 0.0, 1.0, options, roots);
+    for (size_t r = 0; r < roots.size(); ++r)
+    {
+      ASSERT_GE(roots[r].T, -options.Tolerance) << c.Name;
+      ASSERT_LE(roots[r].T, 1.0 + options.Tolerance) << c.Name;
+      if (r > 0)
+      {
+        ASSERT_GE(roots[r].T, roots[r - 1].T) << c.Name << ": roots out of order";
+      }
+    }
+    const int samples = 1024;
+    auto negative = [&](int i) {
+      const double t = double(i) / samples;
+      const double q[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+      return c.Field->Evaluate(q) < 0;
+    };
+    bool before = negative(0);
+    for (int i = 1; i <= samples; ++i)
+    {
+      const bool now = negative(i);
+      if (now != before)
+      {
+        ++changes;
+        const double lo = double(i - 1) / samples - options.Tolerance,
+                     hi = double(i) / samples + options.Tolerance;
+        bool found = false;
+        for (const pisurf::RayRoot& root : roots)
+        {
+          found = found || (root.T >= lo && root.T <= hi);
+        }
+        ASSERT_TRUE(found) << c.Name << ": ray " << n << " changes sign in [" << lo << ", "
+                           << hi << "] but CastRay gives no root there";
+      }
+      before = now;
+    }
+  }
+  EXPECT_GT(changes, 5) << c.Name << ": the rays cross the surface";
+}
+
+TEST_P(FieldConformance, ProbeVertexTellsRegularFromSingular)
+{
+  const FieldCase& c = this->Field();
+  Random random(9);
+  const double probe = 1e-3 * c.Scale;
+  int regular = 0, near = 0;
+  for (int n = 0; n < 500; ++n)
+  {
+    const Point p = InRegion(random, c.Region);
+    double normal[3], norm, reference[3], referenceNorm;
+    int nearest, referenceNearest;
+    const bool singular = c.Field->ProbeVertex(p.data(), probe, 0.1, normal, norm, nearest);
+    c.Field->EvaluateVertex(p.data(), reference, referenceNorm, referenceNearest);
+    ASSERT_EQ(nearest, referenceNearest) << c.Name;
+    ASSERT_TRUE(pisurf_test::RelativelyNear(norm, referenceNorm, 1e-9)) << c.Name;
+    for (int k = 0; k < 3; ++k)
+    {
+      ASSERT_NEAR(normal[k], reference[k], 1e-9) << c.Name;
+    }
+    // Where F is moderate and |∇F|·probe dominates F's values at the probes, the point
+    // is regular.
+    const double f = std::fabs(c.Field->Evaluate(p.data()));
+    if (norm > 0 && norm < 1e300 && f < 0.1 * norm * probe)
+    {
+      // |F| at the probes is at most |F(p)| + |∇F|·probe + O(probe²): the test
+      // |∇F|·probe <= 0.1·max|F(probes)| fails unless the curvature term dominates.
+      regular += singular ? 0 : 1;
+      ++near;
+    }
+  }
+  EXPECT_GE(2 * regular, near) << c.Name << ": most points near the surface are regular";
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryField, FieldConformance, ::testing::ValuesIn(FieldNames()),
