@@ -16,6 +16,7 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkGarbageCollector.h"
 #include "vtkInformation.h"
@@ -33,6 +34,8 @@
 #include <cmath>
 #include <memory>
 #include <new>
+#include <sstream>
+#include <string>
 #include <utility>
 
 vtkStandardNewMacro(vtkPiFlyingEdges);
@@ -42,6 +45,17 @@ struct vtkPiFlyingEdges::vtkInternals
 {
   pisurf::MeshingWork Work;
   std::shared_ptr<const pisurf::Field> Field;
+  // The ports the current REQUEST_DATA leaves as they are (DATA_NOT_GENERATED).
+  bool SkipMesh = false, SkipPrimitives = false;
+  // The grid of the last mesh (port 0), for the primitives of an execution that only
+  // asks for port 1.
+  double MeshBounds[6] = { 0, 0, 0, 0, 0, 0 };
+  int MeshDims[3] = { 0, 0, 0 };
+  pisurf::Piece MeshPiece;
+  // The last primitives (port 1) and what they were meshed from: the primitives
+  // without the blending, the grid, ProjectVertices and the piece.
+  std::string PrimitivesKey;
+  vtkSmartPointer<vtkPolyData> Primitives;
 };
 
 
@@ -70,8 +84,52 @@ vtkPiFlyingEdges::~vtkPiFlyingEdges()
 vtkTypeBool vtkPiFlyingEdges::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
 {
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  {
+    this->MarkPortsNotGenerated(request, outputs);
+    return 1;
+  }
   return this->LastValid->Process(request, this->KeepLastValidOutput, outputs,
     [&]() { return this->Superclass::ProcessRequest(request, inputs, outputs); });
+}
+
+void vtkPiFlyingEdges::MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs)
+{
+  vtkInternals& in = *this->Internals;
+  in.SkipMesh = in.SkipPrimitives = false;
+  if (outputs->GetNumberOfInformationObjects() < 2 ||
+    !request->Has(vtkExecutive::FROM_OUTPUT_PORT()))
+  {
+    return;
+  }
+  const int from = request->Get(vtkExecutive::FROM_OUTPUT_PORT());
+  vtkInformation* meshInfo = outputs->GetInformationObject(0);
+  vtkInformation* primitivesInfo = outputs->GetInformationObject(1);
+  if (from == 0 && this->PrimitivesOnDemand)
+  {
+    // Port 1 only when it is asked for: it keeps its data, which the executive then
+    // knows to be out of date.
+    in.SkipPrimitives = true;
+  }
+  else if (from == 1)
+  {
+    // Asked for the primitives alone: the mesh is left as it is when it is up to date
+    // for the same piece (its grid is then the one the primitives take).
+    auto* executive = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
+    vtkDataObject* mesh = meshInfo->Get(vtkDataObject::DATA_OBJECT());
+    const pisurf::Piece asked = pisurf::PieceOf(primitivesInfo);
+    in.SkipMesh = executive && mesh && in.MeshDims[0] > 0 &&
+      mesh->GetUpdateTime() > executive->GetPipelineMTime() &&
+      in.MeshPiece.Piece == asked.Piece && in.MeshPiece.Pieces == asked.Pieces;
+  }
+  if (in.SkipMesh)
+  {
+    meshInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+  }
+  if (in.SkipPrimitives)
+  {
+    primitivesInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+  }
 }
 
 vtkMTimeType vtkPiFlyingEdges::GetMTime()
@@ -165,8 +223,19 @@ bool vtkPiFlyingEdges::ComputeGrid(
 int vtkPiFlyingEdges::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  // (The marks hold for this execution only.)
+  struct Unmark
+  {
+    vtkInternals& In;
+    ~Unmark() { In.SkipMesh = In.SkipPrimitives = false; }
+  } unmark{ *this->Internals };
   try
   {
+    if (this->Internals->SkipMesh)
+    {
+      this->OutputPrimitives(outputVector);
+      return 1;
+    }
     return this->GenerateMesh(outputVector);
   }
   catch (const std::bad_alloc&)
@@ -277,9 +346,13 @@ int vtkPiFlyingEdges::GenerateMesh(vtkInformationVector* outputVector)
     json->InsertNextValue(pisurf::WriteModel(model));
     output->GetFieldData()->AddArray(json);
   }
-  if (this->GeneratePrimitives && primitives && !fieldSet)
+  vtkInternals& in = *this->Internals;
+  std::copy(bounds, bounds + 6, in.MeshBounds);
+  std::copy(g.Dims, g.Dims + 3, in.MeshDims);
+  in.MeshPiece = request;
+  if (!in.SkipPrimitives && !fieldSet)
   {
-    this->MeshPrimitives(bounds, g.Dims, piece, pieces, primitives);
+    this->OutputPrimitives(outputVector);
   }
   // (One piece of several may be empty while the others are not: no warning then.)
   if (vertices == 0 && pieces == 1)
@@ -355,6 +428,54 @@ int vtkPiFlyingEdges::ChooseResolution(const double bounds[6])
   vtkWarningMacro(<< "AutomaticResolution: the mesh had not settled (components and area) by "
                   << chosen << " cells; using " << chosen);
   return chosen;
+}
+
+void vtkPiFlyingEdges::OutputPrimitives(vtkInformationVector* outputVector)
+{
+  vtkInternals& in = *this->Internals;
+  vtkPolyData* out = vtkPolyData::GetData(outputVector, 1);
+  if (!this->GeneratePrimitives || !out || in.Field || !this->PiSurface || in.MeshDims[0] == 0)
+  {
+    return;
+  }
+  // The primitives depend on the factors, not on the blending: the same factors on the
+  // same grid give the same meshes, kept from the last time.
+  std::ostringstream key;
+  pisurf::Model model;
+  const bool keyed = this->PiSurface->GetCoreModel(model);
+  if (keyed)
+  {
+    model.Blending = 0.0;
+    model.HasBounds = false;
+    key.precision(17);
+    key << pisurf::WriteModel(model) << "|" << this->ProjectVertices << "|"
+        << in.MeshPiece.Piece << "/" << in.MeshPiece.Pieces;
+    for (int a = 0; a < 6; ++a)
+    {
+      key << "|" << in.MeshBounds[a];
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      key << "|" << in.MeshDims[a];
+    }
+    if (in.Primitives && key.str() == in.PrimitivesKey)
+    {
+      out->ShallowCopy(in.Primitives);
+      return;
+    }
+  }
+  this->MeshPrimitives(in.MeshBounds, in.MeshDims, in.MeshPiece.Piece, in.MeshPiece.Pieces, out);
+  if (keyed && !this->CheckAbort())
+  {
+    in.PrimitivesKey = key.str();
+    in.Primitives = vtkSmartPointer<vtkPolyData>::New();
+    in.Primitives->ShallowCopy(out);
+  }
+  else
+  {
+    in.PrimitivesKey.clear();
+    in.Primitives = nullptr;
+  }
 }
 
 void vtkPiFlyingEdges::MeshPrimitives(

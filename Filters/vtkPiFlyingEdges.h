@@ -69,7 +69,12 @@
  *    orders of magnitude along the edge. Off, vertices are the linear interpolation of
  *    F along the edge, as vtkFlyingEdges3D would place them.
  *
- * Output port 1 (GeneratePrimitives): the primitives themselves, each meshed alone.
+ * Output port 1 (GeneratePrimitives): the primitives themselves, each meshed alone on
+ * the mesh's grid, kept while the factors, the grid, ProjectVertices and the piece stay
+ * the same (a change of the blending alone re-meshes port 0 only). With
+ * PrimitivesOnDemand (on in ParaView) they are computed only when port 1 itself is
+ * asked for (a view showing it, `UpdatePipeline(proxy=..., port=1)`, `Update(1)`), not
+ * when only the mesh is.
  *
  * Output point data: `Normals` (unit analytic gradient, pointing towards increasing F),
  * `Factor` (index of the primitive whose zero set is nearest, so each primitive's patch
@@ -232,6 +237,17 @@ public:
   ///@}
 
   ///@{
+  /// With GeneratePrimitives: compute port 1 only when port 1 itself is updated
+  /// (`Update(1)`, a consumer's request from port 1), not when port 0 is. Off by default
+  /// (a VTK mapper updates its input algorithm's first port whichever port it shows,
+  /// and `Update()` then `GetOutput(1)` expects both); on in ParaView's proxies, whose
+  /// views ask for each port they show.
+  vtkSetMacro(PrimitivesOnDemand, bool);
+  vtkGetMacro(PrimitivesOnDemand, bool);
+  vtkBooleanMacro(PrimitivesOnDemand, bool);
+  ///@}
+
+  ///@{
   /// Add the point array `GradientMagnitude` (|∇F|, clamped to VTK_DOUBLE_MAX; default off).
   vtkSetMacro(ComputeGradientMagnitude, bool);
   vtkGetMacro(ComputeGradientMagnitude, bool);
@@ -271,6 +287,12 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // AutomaticResolution's search; 0 (with an error) if no resolution fits.
   int ChooseResolution(const double bounds[6]);
+  // REQUEST_DATA_NOT_GENERATED: the Primitives port is left as it is when only the mesh
+  // is asked for, and the mesh when only the primitives are and it is up to date.
+  void MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs);
+  // Port 1 with GeneratePrimitives, on the grid of the last mesh: kept from the last
+  // time when the factors, grid, ProjectVertices and piece are the same.
+  void OutputPrimitives(vtkInformationVector* outputVector);
   // Meshes each factor alone into `out` (port 1), for the same piece.
   void MeshPrimitives(
     const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out);
@@ -284,6 +306,7 @@ protected:
   bool OuterEnvelope = true;
   bool ComputeGradientMagnitude = false;
   bool GeneratePrimitives = false;
+  bool PrimitivesOnDemand = false;
   bool AutomaticResolution = false;
   int MaximumAutomaticResolution = 512;
   int LastResolution = 0;
