@@ -5,7 +5,7 @@
 The listing (Testing/Data/proxy_listing.txt, recorded from the one-file XML before it
 was split by feature) names, for each proxy of the plugin outside the `internal_*`
 groups, sorted by group and name: the proxy's attributes (label, class), its
-documentation, hints and output ports, then every property in the order of the
+documentation, then its hints, output ports and property groups, then every property in the order of the
 Properties panel (inherited ones included, as ParaView flattens base proxies): its XML
 element in full (attributes, domains, hints, help text, whitespace normalised) and the
 values ParaView gives it on a new proxy, with each domain's class and content (range
@@ -126,10 +126,14 @@ def listing():
         proxy = pxm.NewProxy(group, name)
         check(proxy is not None, "cannot create %s/%s" % (group, name))
         properties = []
+        # The proxy's documentation first: where ParaView's flattening puts it depends
+        # only on which XML element of the inheritance chain holds it.
+        for child in definition.findall("Documentation"):
+            lines += element_lines(child, "  ")
         for child in definition:
             if child.tag.endswith("Property") and child.get("name"):
                 properties.append(child)
-            else:  # documentation, hints, output ports, property groups: in order
+            elif child.tag != "Documentation":  # hints, output ports, groups: in order
                 lines += element_lines(child, "  ")
         for child in properties:
             prop_name = child.get("name")
