@@ -11,6 +11,11 @@ compilation, gives each user-visible proxy one page with every property the
 Properties panel can show, in the panel's order (inherited ones first), and
 removes the pages of internal proxies and of references.
 
+The XML comes as several files (Plugin/XML/, one per family of proxies) in the order
+the plugin loads them: a proxy's base (base_proxygroup/base_proxyname) must be in an
+earlier file or earlier in the same file, otherwise the build stops here with the
+names of both.
+
 Usage: FinishHelp.py <help directory> <stamp file> <server-manager XML>...
 """
 
@@ -57,6 +62,10 @@ def read_proxies(xml_files):
                 if element.get("group") and not element.get("class"):
                     continue  # a reference to a proxy of another group
                 proxy = Proxy(group.get("name"), element)
+                if proxy.base and proxy.base not in proxies:
+                    sys.exit("FinishHelp: %s (%s) derives from %s.%s, which no earlier XML "
+                             "file defines: list the base's file first"
+                             % (proxy.key, os.path.basename(path), proxy.base[0], proxy.base[1]))
                 proxies[(proxy.group, proxy.name)] = proxy
     return proxies
 
