@@ -20,6 +20,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -66,6 +67,16 @@ Placement PlacementOf(int type)
       return { "InteractiveHandle", { { "WorldPosition", "Center" } } };
   }
   return { nullptr, {} };
+}
+
+// Two placements that bind the same functions to the same properties (by name: the
+// catalogue's strings need not share addresses).
+bool SameFunctions(const Placement& a, const Placement& b)
+{
+  return std::equal(a.Functions.begin(), a.Functions.end(), b.Functions.begin(),
+    b.Functions.end(), [](const auto& x, const auto& y) {
+      return std::strcmp(x.first, y.first) == 0 && std::strcmp(x.second, y.second) == 0;
+    });
 }
 
 // The box is always the unit box [-1, 1]^3 scaled by Radii: its reference-bounds
@@ -222,7 +233,7 @@ void pqPiPrimitivePlacementWidget::updateType()
   const Placement previous = PlacementOf(internals.CurrentType);
   const bool same = internals.Current && previous.PanelWidget && placement.PanelWidget &&
     std::strcmp(previous.PanelWidget, placement.PanelWidget) == 0 &&
-    previous.Functions == placement.Functions;
+    SameFunctions(previous, placement);
   internals.CurrentType = type;
   if (same)
   {

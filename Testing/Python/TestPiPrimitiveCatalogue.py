@@ -15,6 +15,7 @@ types. What cannot iterate it, because ParaView reads it as static text, is chec
    as are the properties that every type's 3D widget edits.
 2. Documentation/pisurf-format.md: its primitive table lists the catalogue's types in
    order (`key` / Label) with their parameter keys.
+3. Documentation/user-guide.md: Pi Primitive's `Type` row lists the catalogue's labels.
 """
 import glob
 import json
@@ -156,5 +157,18 @@ check(rows, "pisurf-format.md: no primitive table (| type (`.pisurf` / VTK) | ..
 expected = [(t["key"], t["label"], [p["key"] for p in t["parameters"]]) for t in CATALOGUE]
 check(rows == expected, "pisurf-format.md's primitive table:\n  %s\nthe catalogue:\n  %s"
       % (rows, expected))
+
+# --- 3. The user guide's Type row of Pi Primitive -----------------------------------------
+
+GUIDE = os.path.join(SOURCE, "Documentation", "user-guide.md")
+with open(GUIDE, encoding="utf-8") as f:
+    type_rows = [line for line in f
+                 if line.startswith("| `Type` |") and "The kind of primitive" in line]
+check(len(type_rows) == 1, "user-guide.md: %d rows for Pi Primitive's `Type`" % len(type_rows))
+for line in type_rows:
+    values = re.findall(r"`([^`]+)`", line.split("Values:", 1)[-1])
+    check(values == [t["label"] for t in CATALOGUE],
+          "user-guide.md: Pi Primitive's Type values %s, the catalogue's %s"
+          % (values, [t["label"] for t in CATALOGUE]))
 
 finish()
