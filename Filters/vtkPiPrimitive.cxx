@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiPrimitive.h"
 
+#include "PiPrimitiveCatalogue.h"
 #include "PiPrimitiveSpec.h"
 
 #include "vtkDoubleArray.h"
@@ -31,6 +32,21 @@ struct vtkPiPrimitive::vtkInternals
 vtkPiPrimitive::vtkPiPrimitive()
   : Internals(new vtkInternals)
 {
+  // Every type's numeric parameters at their catalogue defaults. The Expression starts
+  // empty, as the XML's: a Polynomial needs one typed (the editor starts a new one at
+  // the catalogue's default).
+  pisurf::PrimitiveSpec defaults;
+  for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
+  {
+    for (const pisurf::ParameterInfo& parameter : entry.Parameters)
+    {
+      if (parameter.Kind != pisurf::ParameterKind::Text)
+      {
+        pisurf::SetDefault(defaults, parameter);
+      }
+    }
+  }
+  this->SetSpec(defaults);
 }
 
 vtkPiPrimitive::~vtkPiPrimitive() = default;
@@ -341,8 +357,28 @@ int vtkPiPrimitive::GetDegree()
 
 bool vtkPiPrimitive::IsBounded()
 {
-  return this->Type == SPHERE || this->Type == ELLIPSOID || this->Type == SUPERELLIPSOID ||
-    this->Type == TORUS;
+  return pisurf::CatalogueEntry(static_cast<pisurf::PrimitiveType>(this->Type)).Bounded;
+}
+
+void vtkPiPrimitive::SetType(int type)
+{
+  const int last = static_cast<int>(pisurf::PrimitiveCatalogue().size()) - 1;
+  type = std::min(std::max(type, 0), last);
+  if (type != this->Type)
+  {
+    this->Type = type;
+    this->Modified();
+  }
+}
+
+int vtkPiPrimitive::GetNumberOfTypes()
+{
+  return static_cast<int>(pisurf::PrimitiveCatalogue().size());
+}
+
+std::string vtkPiPrimitive::GetCatalogueJSON()
+{
+  return pisurf::CatalogueJSON();
 }
 
 bool vtkPiPrimitive::GetPrimitiveBounds(double bounds[6])

@@ -86,9 +86,13 @@ public:
   void EvaluateGradient(double x[3], double g[3]) override;
 
   ///@{
-  /// The primitive type (default SPHERE). SetTypeFromString accepts "Torus" or "torus".
-  vtkSetClampMacro(Type, int, SPHERE, POLYNOMIAL);
+  /// The primitive type (default SPHERE), clamped to the types of the primitive
+  /// catalogue (Filters/Core/PiPrimitiveCatalogue.h), whose order the enum above names.
+  /// SetTypeFromString accepts "Torus" or "torus".
+  void SetType(int type);
   vtkGetMacro(Type, int);
+  int GetTypeMinValue() { return SPHERE; }
+  int GetTypeMaxValue() { return GetNumberOfTypes() - 1; }
   void SetTypeToSphere() { this->SetType(SPHERE); }
   void SetTypeToEllipsoid() { this->SetType(ELLIPSOID); }
   void SetTypeToSuperellipsoid() { this->SetType(SUPERELLIPSOID); }
@@ -104,6 +108,13 @@ public:
   bool SetTypeFromString(const char* type);
   const char* GetTypeAsString();
   ///@}
+
+  /// The number of primitive types (the catalogue's entries).
+  static int GetNumberOfTypes();
+  /// The primitive catalogue as JSON: each type's key, label, parameters (key, property,
+  /// count, default, constraint, label, unit, tooltip) and widget. The tests read it to
+  /// check the ParaView XML and the documentation against the catalogue.
+  static std::string GetCatalogueJSON();
 
   ///@{
   /// Centre of the primitive (default 0,0,0).
@@ -213,7 +224,7 @@ public:
 
   /// Total degree of the polynomial (-1 if invalid).
   int GetDegree();
-  /// True for bounded types (sphere, ellipsoid, superellipsoid, torus).
+  /// True for bounded types (the catalogue's: sphere, ellipsoid, superellipsoid, torus).
   bool IsBounded();
   /// World-space bounding box of a bounded primitive; false if unbounded or invalid.
   bool GetPrimitiveBounds(double bounds[6]);

@@ -5,6 +5,7 @@
 #include "PiLastValidOutput.h"
 
 #include "PiModel.h"
+#include "PiPrimitiveCatalogue.h"
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiSurface.h"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 vtkStandardNewMacro(vtkPiPrimitiveSource);
 
@@ -234,23 +236,24 @@ bool vtkPiPrimitiveSource::ResolveBounds(double bounds[6], std::string& error)
     }
     return true;
   }
+  // The largest of the type's lengths (a cylinder's radius, a hyperboloid's semi-axes),
+  // or 1 for a type without one.
   double size = 1.0;
-  const double* r = p->GetRadii();
-  switch (p->GetType())
+  bool sized = false;
+  pisurf::PrimitiveSpec spec = p->GetSpec();
+  for (const pisurf::ParameterInfo& parameter :
+    pisurf::CatalogueEntry(static_cast<pisurf::PrimitiveType>(p->GetType())).Parameters)
   {
-    case vtkPiPrimitive::CYLINDER:
-      size = p->GetRadius();
-      break;
-    case vtkPiPrimitive::HYPERBOLOID1:
-    case vtkPiPrimitive::HYPERBOLOID2:
-      size = std::max({ r[0], r[1], r[2] });
-      break;
-    case vtkPiPrimitive::PARABOLOID:
-    case vtkPiPrimitive::HYPERBOLIC_PARABOLOID:
-      size = std::max(r[0], r[1]);
-      break;
-    default:
-      break;
+    if (parameter.Kind == pisurf::ParameterKind::Number &&
+      std::string(parameter.Unit) == "length")
+    {
+      const double* v = parameter.Numbers(spec);
+      for (int i = 0; i < parameter.Count; ++i)
+      {
+        size = sized ? std::max(size, v[i]) : v[i];
+        sized = true;
+      }
+    }
   }
   const double* c = p->GetCenter();
   for (int a = 0; a < 3; ++a)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqPiPrimitive3DWidget.h"
 
-#include "PiPrimitiveSpec.h"
+#include "PiPrimitiveCatalogue.h"
 
 #include "pqApplicationCore.h"
 #include "pqCoreUtilities.h"
@@ -74,6 +74,15 @@ bool AxisAngleOf(const double euler[3], double axis[3], double& angle)
   angle = wxyz[0];
   std::copy(wxyz + 1, wxyz + 4, axis);
   return std::abs(angle) > 1e-9 && (axis[0] != 0 || axis[1] != 0 || axis[2] != 0);
+}
+
+// The values the sphere's radius or the box's scale edit: the catalogue's WidgetSize.
+double* SizeOf(pisurf::PrimitiveSpec& spec)
+{
+  const pisurf::PrimitiveInfo& entry = pisurf::CatalogueEntry(spec.Type);
+  const pisurf::ParameterInfo* size =
+    entry.WidgetSize ? pisurf::FindParameter(entry, entry.WidgetSize) : nullptr;
+  return size && size->Kind == pisurf::ParameterKind::Number ? size->Numbers(spec) : nullptr;
 }
 
 void Get3(vtkSMProxy* proxy, const char* name, double v[3])
@@ -192,16 +201,18 @@ public:
   }
 
   /// The primitive's placement into the widget's properties.
-  void push(const pisurf::PrimitiveSpec& spec)
+  void push(const pisurf::PrimitiveSpec& primitive)
   {
     vtkSMProxy* widget = this->Proxy;
+    pisurf::PrimitiveSpec spec = primitive;
+    const double* size = SizeOf(spec);
     switch (this->ProxyKind)
     {
       case Kind::Sphere:
         // The radius after the centre, each pushed: with its handle shown, a sphere
         // widget whose centre moves keeps the handle and takes the radius from it.
         Set3(widget, "Center", spec.Center);
-        vtkSMPropertyHelper(widget, "Radius").Set(spec.Radius);
+        vtkSMPropertyHelper(widget, "Radius").Set(size[0]);
         widget->UpdateProperty("Center", 1);
         widget->UpdateProperty("Radius", 1);
         break;
@@ -211,7 +222,7 @@ public:
         EulerOf(spec, euler);
         Set3(widget, "Position", spec.Center);
         Set3(widget, "Rotation", euler);
-        Set3(widget, "Scale", spec.Radii);
+        Set3(widget, "Scale", size);
         break;
       }
       case Kind::Handle:
@@ -245,18 +256,19 @@ pqPiPrimitive3DWidget::~pqPiPrimitive3DWidget()
 //-----------------------------------------------------------------------------
 Kind pqPiPrimitive3DWidget::kindOf(const pisurf::PrimitiveSpec& spec)
 {
-  switch (spec.Type)
+  // The catalogue's widget where this editor has it: a sphere (the same in every
+  // orientation), a box for a bounded type (the box is its extent; an Axis orientation
+  // picks its own frame about the axis: a handle), a handle at the centre otherwise.
+  const pisurf::PrimitiveInfo& entry = pisurf::CatalogueEntry(spec.Type);
+  if (entry.Widget == pisurf::WidgetKind::Sphere)
   {
-    case PrimitiveType::Sphere:
-      // A sphere is the same in every orientation.
-      return Kind::Sphere;
-    case PrimitiveType::Ellipsoid:
-    case PrimitiveType::Superellipsoid:
-      // (An Axis orientation picks its own frame about the axis: a handle.)
-      return spec.Orient != Orientation::Axis ? Kind::Box : Kind::Handle;
-    default:
-      return Kind::Handle;
+    return Kind::Sphere;
   }
+  if (entry.Widget == pisurf::WidgetKind::Box && entry.Bounded)
+  {
+    return spec.Orient != Orientation::Axis ? Kind::Box : Kind::Handle;
+  }
+  return Kind::Handle;
 }
 
 //-----------------------------------------------------------------------------
@@ -335,12 +347,12 @@ bool pqPiPrimitive3DWidget::readPrimitive(pisurf::PrimitiveSpec& spec) const
   {
     case Kind::Sphere:
       Get3(widget, "CenterInfo", spec.Center);
-      Settle(spec.Radius, vtkSMPropertyHelper(widget, "RadiusInfo").GetAsDouble());
+      Settle(SizeOf(spec)[0], vtkSMPropertyHelper(widget, "RadiusInfo").GetAsDouble());
       return true;
     case Kind::Box:
     {
       Get3(widget, "PositionInfo", spec.Center);
-      Get3(widget, "ScaleInfo", spec.Radii);
+      Get3(widget, "ScaleInfo", SizeOf(spec));
       // The orientation changes only if the box turned (the angles out of the widget's
       // matrix carry round-off; an untouched rotation keeps its typed axis and angle).
       double current[3], turned[3];

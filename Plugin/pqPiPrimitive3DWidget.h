@@ -6,13 +6,14 @@
  * The primitive editor (pqPiPrimitiveListWidget) places its selected primitive with one
  * of ParaView's interactive widgets, the same widget representation proxies ("3D
  * widgets" of the `representations` group) that the "Pi Primitive" source uses through
- * its PropertyGroups:
- * - a sphere: SphereWidgetRepresentation, Center and Radius;
- * - an ellipsoid or a superellipsoid, unrotated or turned by a rotation:
- *   BoxWidgetRepresentation over the reference box [-1, 1]^3, Position = Center,
- *   Scale = Radii and Rotation = the primitive's rotation as the widget's Euler angles
- *   (vtkProp3D's R = Rz Rx Ry); turning the box sets the primitive's RotationAxis and
- *   RotationAngle (orientation Rotation);
+ * its PropertyGroups, chosen by the primitive catalogue's widget kind
+ * (Filters/Core/PiPrimitiveCatalogue.h):
+ * - a sphere kind: SphereWidgetRepresentation, Center and Radius (the WidgetSize);
+ * - a box kind of a bounded type (an ellipsoid or a superellipsoid), unrotated or
+ *   turned by a rotation: BoxWidgetRepresentation over the reference box [-1, 1]^3,
+ *   Position = Center, Scale = Radii (the WidgetSize) and Rotation = the primitive's
+ *   rotation as the widget's Euler angles (vtkProp3D's R = Rz Rx Ry); turning the box
+ *   sets the primitive's RotationAxis and RotationAngle (orientation Rotation);
  * - any other primitive, or one oriented by an Axis: HandleWidgetRepresentation at its
  *   Center.
  *

@@ -2,6 +2,7 @@
 #include "pqPiPrimitiveListWidget.h"
 
 #include "PiModel.h"
+#include "PiPrimitiveCatalogue.h"
 #include "pqPiPrimitive3DWidget.h"
 
 #include "pqView.h"
@@ -21,6 +22,7 @@
 #include <QPointer>
 #include <QPushButton>
 #include <QSignalBlocker>
+#include <QStringList>
 #include <QTableWidget>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -37,22 +39,14 @@ using pisurf::PrimitiveType;
 // The style of a refused field.
 const char* const RefusedStyle = "QLineEdit { background-color: #f6c4c4; }";
 
-// A polynomial primitive needs an expression: a new one starts as the unit sphere.
-const char* const DefaultExpression = "x^2 + y^2 + z^2 - 1";
-
-enum class Kind
-{
-  Number,
-  Integer,
-  Text
-};
+using Kind = pisurf::ParameterKind;
 
 // One editable parameter of a primitive: the "Pi Primitive" property name, its label
 // with units, and how many components.
 struct Field
 {
   const char* Name;
-  const char* Label;
+  QString Label;
   const char* Tip;
   Kind Type;
   int Count;
@@ -70,50 +64,39 @@ const Field RotationAngleField = { "RotationAngle", "Rotation angle (degrees)",
 const Field ScaleField = { "Scale", "Scale (factor)",
   "The primitive's polynomial is multiplied by this non-zero number.", Kind::Number, 1 };
 
-std::vector<Field> ShapeFields(PrimitiveType t)
+// The label of a catalogue parameter: "Radius R (length)".
+QString LabelOf(const pisurf::ParameterInfo& p)
 {
-  const Field radius = { "Radius", "Radius R (length)", "Positive radius.", Kind::Number, 1 };
-  const Field radii3 = { "Radii", "Semi-axes a, b, c (length)", "Three positive semi-axes.",
-    Kind::Number, 3 };
-  const Field radii2 = { "Radii", "Semi-axes a, b (length)", "Two positive semi-axes.",
-    Kind::Number, 2 };
-  switch (t)
-  {
-    case PrimitiveType::Sphere:
-    case PrimitiveType::Cylinder:
-      return { radius };
-    case PrimitiveType::Ellipsoid:
-    case PrimitiveType::Hyperboloid1:
-    case PrimitiveType::Hyperboloid2:
-      return { radii3 };
-    case PrimitiveType::Paraboloid:
-    case PrimitiveType::HyperbolicParaboloid:
-      return { radii2 };
-    case PrimitiveType::Superellipsoid:
-      return { radii3,
-        { "Exponent", "Exponent n (even integer)", "An even integer, at least 2.", Kind::Integer,
-          1 } };
-    case PrimitiveType::Torus:
-      return { { "MajorRadius", "Major radius R (length)",
-                 "Distance from the centre to the tube's axis (positive).", Kind::Number, 1 },
-        { "MinorRadius", "Minor radius \u03c1 (length)", "Radius of the tube (positive).",
-          Kind::Number, 1 } };
-    case PrimitiveType::Plane:
-      return { { "Normal", "Normal (x, y, z)", "Normal direction (not zero); the plane passes "
-                 "through the centre.", Kind::Number, 3 } };
-    case PrimitiveType::Cone:
-      return { { "Angle", "Half-angle \u03b8 (degrees)", "Between 0 and 90 degrees, exclusive.",
-        Kind::Number, 1 } };
-    case PrimitiveType::Polynomial:
-      return { { "Expression", "Expression in x, y, z",
-        "A polynomial in the local coordinates x, y, z and the model's parameters.", Kind::Text,
-        1 } };
-    default:
-      return {};
-  }
+  const QString label = QString::fromUtf8(p.Label);
+  return *p.Unit ? QString("%1 (%2)").arg(label, QString::fromUtf8(p.Unit)) : label;
 }
 
-// The storage of a numeric field in a spec (Exponent is handled apart).
+// The type's own parameters, from the catalogue.
+std::vector<Field> ShapeFields(PrimitiveType t)
+{
+  std::vector<Field> fields;
+  for (const pisurf::ParameterInfo& p : pisurf::CatalogueEntry(t).Parameters)
+  {
+    fields.push_back({ p.Property, LabelOf(p), p.Tooltip, p.Kind, p.Count });
+  }
+  return fields;
+}
+
+// The catalogue parameter stored under this property name (by any type), or nullptr.
+const pisurf::ParameterInfo* ShapeParameter(const QString& name)
+{
+  const std::string property = name.toStdString();
+  for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
+  {
+    if (const pisurf::ParameterInfo* p = pisurf::FindParameter(entry, property))
+    {
+      return p;
+    }
+  }
+  return nullptr;
+}
+
+// The storage of a numeric field in a spec: the frame's, or a catalogue parameter's.
 double* Slot(PrimitiveSpec& s, const QString& name)
 {
   if (name == "Center")
@@ -126,19 +109,8 @@ double* Slot(PrimitiveSpec& s, const QString& name)
     return &s.RotationAngle;
   if (name == "Scale")
     return &s.Scale;
-  if (name == "Radius")
-    return &s.Radius;
-  if (name == "Radii")
-    return s.Radii;
-  if (name == "MajorRadius")
-    return &s.MajorRadius;
-  if (name == "MinorRadius")
-    return &s.MinorRadius;
-  if (name == "Normal")
-    return s.Normal;
-  if (name == "Angle")
-    return &s.Angle;
-  return nullptr;
+  const pisurf::ParameterInfo* p = ShapeParameter(name);
+  return p && p->Kind == Kind::Number ? p->Numbers(s) : nullptr;
 }
 
 QString Number(double v)
@@ -146,15 +118,17 @@ QString Number(double v)
   return QString::number(v, 'g', QLocale::FloatingPointShortest);
 }
 
-QString FieldText(const PrimitiveSpec& s, const QString& name, int component)
+QString FieldText(const PrimitiveSpec& spec, const QString& name, int component)
 {
+  PrimitiveSpec& s = const_cast<PrimitiveSpec&>(spec); // the accessors only read here
   if (name == "Name")
     return QString::fromStdString(s.Name);
-  if (name == "Expression")
-    return QString::fromStdString(s.Expression);
-  if (name == "Exponent")
-    return QString::number(s.Exponent);
-  double* slot = Slot(const_cast<PrimitiveSpec&>(s), name);
+  const pisurf::ParameterInfo* p = ShapeParameter(name);
+  if (p && p->Kind == Kind::Text)
+    return QString::fromStdString(*p->Text(s));
+  if (p && p->Kind == Kind::Integer)
+    return QString::number(*p->Integer(s));
+  double* slot = Slot(s, name);
   return slot ? Number(slot[component]) : QString();
 }
 
@@ -167,22 +141,23 @@ bool SetField(PrimitiveSpec& s, const QString& name, int component, const QStrin
     s.Name = text.trimmed().toStdString();
     return true;
   }
-  if (name == "Expression")
+  const pisurf::ParameterInfo* p = ShapeParameter(name);
+  if (p && p->Kind == Kind::Text)
   {
-    s.Expression = text.toStdString();
+    *p->Text(s) = text.toStdString();
     return true;
   }
   bool ok = false;
   const QString t = text.trimmed();
-  if (name == "Exponent")
+  if (p && p->Kind == Kind::Integer)
   {
     const int n = t.toInt(&ok);
     if (!ok)
     {
-      error = QString("Exponent: '%1' is not an integer").arg(text);
+      error = QString("%1: '%2' is not an integer").arg(name, text);
       return false;
     }
-    s.Exponent = n;
+    *p->Integer(s) = n;
     return true;
   }
   const double v = QLocale::c().toDouble(t, &ok);
@@ -201,46 +176,39 @@ QString Triple(const double v[3])
   return QString("(%1, %2, %3)").arg(Number(v[0]), Number(v[1]), Number(v[2]));
 }
 
-// The table's one-line description of a primitive.
-QString Summary(const PrimitiveSpec& s)
+// The table's one-line description of a primitive: its parameters by their symbols
+// ("a, b, c = 1, 1, 1, n = 4", "θ = 30°"; an expression as written).
+QString Summary(const PrimitiveSpec& spec)
 {
-  QString shape;
-  switch (s.Type)
+  PrimitiveSpec& s = const_cast<PrimitiveSpec&>(spec); // the accessors only read here
+  QStringList parts;
+  for (const pisurf::ParameterInfo& p : pisurf::CatalogueEntry(s.Type).Parameters)
   {
-    case PrimitiveType::Sphere:
-    case PrimitiveType::Cylinder:
-      shape = QString("R = %1").arg(Number(s.Radius));
-      break;
-    case PrimitiveType::Ellipsoid:
-    case PrimitiveType::Hyperboloid1:
-    case PrimitiveType::Hyperboloid2:
-      shape = QString("a, b, c = %1, %2, %3")
-                .arg(Number(s.Radii[0]), Number(s.Radii[1]), Number(s.Radii[2]));
-      break;
-    case PrimitiveType::Paraboloid:
-    case PrimitiveType::HyperbolicParaboloid:
-      shape = QString("a, b = %1, %2").arg(Number(s.Radii[0]), Number(s.Radii[1]));
-      break;
-    case PrimitiveType::Superellipsoid:
-      shape = QString("a, b, c = %1, %2, %3, n = %4")
-                .arg(Number(s.Radii[0]), Number(s.Radii[1]), Number(s.Radii[2]))
-                .arg(s.Exponent);
-      break;
-    case PrimitiveType::Torus:
-      shape = QString("R = %1, \u03c1 = %2").arg(Number(s.MajorRadius), Number(s.MinorRadius));
-      break;
-    case PrimitiveType::Plane:
-      shape = QString("n = %1").arg(Triple(s.Normal));
-      break;
-    case PrimitiveType::Cone:
-      shape = QString("\u03b8 = %1\u00b0").arg(Number(s.Angle));
-      break;
-    case PrimitiveType::Polynomial:
-      shape = QString::fromStdString(s.Expression);
-      break;
-    default:
-      break;
+    if (p.Kind == Kind::Text)
+    {
+      parts << QString::fromStdString(*p.Text(s));
+      continue;
+    }
+    const QStringList symbols = QString::fromUtf8(p.Symbol).split(' ');
+    QString value;
+    if (p.Kind == Kind::Integer)
+    {
+      value = QString::number(*p.Integer(s));
+    }
+    else
+    {
+      QStringList values;
+      for (int i = 0; i < p.Count; ++i)
+        values << Number(p.Numbers(s)[i]);
+      value = values.join(", ");
+      // One symbol for several components: a vector, in parentheses.
+      if (p.Count > 1 && symbols.size() == 1)
+        value = QString("(%1)").arg(value);
+    }
+    const QString unit = std::string(p.Unit) == "degrees" ? QString("°") : QString();
+    parts << QString("%1 = %2%3").arg(symbols.mid(0, p.Count).join(", "), value, unit);
   }
+  const QString shape = parts.join(", ");
   QString text = QString("%1 at %2").arg(shape, Triple(s.Center));
   if (s.Scale != 1.0)
     text += QString(", \u00d7%1").arg(Number(s.Scale));
@@ -257,20 +225,23 @@ QComboBox* NewTypeCombo(QWidget* parent)
   // Narrow docks: the combo may be shorter than its longest entry.
   combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
   combo->setMinimumContentsLength(8);
-  for (int t = 0; t < static_cast<int>(PrimitiveType::NumberOfTypes); ++t)
+  for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
   {
-    combo->addItem(pisurf::TypeLabel(static_cast<PrimitiveType>(t)), t);
+    combo->addItem(entry.Label, static_cast<int>(entry.Type));
   }
   return combo;
 }
 
-PrimitiveSpec NewPrimitive(PrimitiveType t)
+// A primitive changed to type `t`: a text parameter it needs (a polynomial's
+// expression) starts at its default when empty.
+void ChangeType(PrimitiveSpec& s, PrimitiveType t)
 {
-  PrimitiveSpec s;
   s.Type = t;
-  if (t == PrimitiveType::Polynomial)
-    s.Expression = DefaultExpression;
-  return s;
+  for (const pisurf::ParameterInfo& p : pisurf::CatalogueEntry(t).Parameters)
+  {
+    if (p.Kind == Kind::Text && p.Text(s)->empty())
+      pisurf::SetDefault(s, p);
+  }
 }
 }
 
@@ -483,7 +454,7 @@ public:
     auto addField = [&](const Field& f) {
       if (f.Count == 1)
       {
-        form->addRow(QObject::tr(f.Label), newEdit(panel, f, 0));
+        form->addRow(QObject::tr(f.Label.toUtf8().constData()), newEdit(panel, f, 0));
         return;
       }
       auto* editor = new QWidget(panel);
@@ -491,7 +462,7 @@ public:
       row->setContentsMargins(0, 0, 0, 0);
       for (int i = 0; i < f.Count; ++i)
         row->addWidget(newEdit(editor, f, i));
-      form->addRow(QObject::tr(f.Label), editor);
+      form->addRow(QObject::tr(f.Label.toUtf8().constData()), editor);
     };
 
     for (const Field& f : ShapeFields(spec.Type))
@@ -780,9 +751,7 @@ void pqPiPrimitiveListWidget::onRowTypeChanged(int index)
   }
   pisurf::Model candidate = internals.Model;
   PrimitiveSpec& spec = candidate.Primitives[row];
-  spec.Type = static_cast<PrimitiveType>(index);
-  if (spec.Type == PrimitiveType::Polynomial && spec.Expression.empty())
-    spec.Expression = DefaultExpression;
+  ChangeType(spec, static_cast<PrimitiveType>(index));
   if (!internals.commit(candidate, row, combo))
   {
     internals.refresh();
@@ -799,9 +768,7 @@ void pqPiPrimitiveListWidget::onSelectedTypeChanged(int index)
   }
   pisurf::Model candidate = internals.Model;
   PrimitiveSpec& spec = candidate.Primitives[internals.Row];
-  spec.Type = static_cast<PrimitiveType>(index);
-  if (spec.Type == PrimitiveType::Polynomial && spec.Expression.empty())
-    spec.Expression = DefaultExpression;
+  ChangeType(spec, static_cast<PrimitiveType>(index));
   internals.commit(candidate, internals.Row, qobject_cast<QWidget*>(this->sender()));
 }
 
@@ -881,7 +848,7 @@ void pqPiPrimitiveListWidget::addPrimitive()
   pqInternals& internals = *this->Internals;
   pisurf::Model candidate = internals.Model;
   candidate.Primitives.push_back(
-    NewPrimitive(static_cast<PrimitiveType>(internals.NewType->currentIndex())));
+    pisurf::DefaultPrimitive(static_cast<PrimitiveType>(internals.NewType->currentIndex())));
   internals.commit(candidate, internals.count(), internals.NewType);
 }
 

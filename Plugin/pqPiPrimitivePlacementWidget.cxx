@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqPiPrimitivePlacementWidget.h"
 
-#include "PiPrimitiveSpec.h"
+#include "PiPrimitiveCatalogue.h"
 
 #include "pqApplicationCore.h"
 #include "pqCoreUtilities.h"
@@ -20,6 +20,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -37,38 +38,45 @@ struct Placement
   std::vector<std::pair<const char*, const char*>> Functions; // function, property
 };
 
-// The placement of each primitive type; nullptr panel widget for none.
+// The placement of each primitive type: its catalogue widget, bound to the properties
+// the catalogue names; nullptr panel widget for none.
 Placement PlacementOf(int type)
 {
-  switch (static_cast<PrimitiveType>(type))
+  if (!pisurf::IsPrimitiveType(type))
   {
-    case PrimitiveType::Sphere:
-      return { "InteractiveSphere", { { "Center", "Center" }, { "Radius", "Radius" } } };
-    case PrimitiveType::Cylinder:
-      return { "InteractiveCylinder",
-        { { "Center", "Center" }, { "Axis", "Axis" }, { "Radius", "Radius" } } };
-    case PrimitiveType::Torus:
-      return { "InteractiveCylinder",
-        { { "Center", "Center" }, { "Axis", "Axis" }, { "Radius", "MajorRadius" } } };
-    case PrimitiveType::Plane:
-      return { "InteractivePlane", { { "Origin", "Center" }, { "Normal", "Normal" } } };
-    case PrimitiveType::Cone:
-      return { "InteractivePlane", { { "Origin", "Center" }, { "Normal", "Axis" } } };
-    case PrimitiveType::Ellipsoid:
-    case PrimitiveType::Superellipsoid:
-    case PrimitiveType::Hyperboloid1:
-    case PrimitiveType::Hyperboloid2:
-    case PrimitiveType::Paraboloid:
-    case PrimitiveType::HyperbolicParaboloid:
-      return { "InteractiveBox",
-        { { "Position", "Center" }, { "Rotation", "Orientation" }, { "Scale", "Radii" },
-          { "UseReferenceBounds", "WidgetUseReferenceBounds" },
-          { "ReferenceBounds", "WidgetReferenceBounds" } } };
-    case PrimitiveType::Polynomial:
-      return { "InteractiveHandle", { { "WorldPosition", "Center" } } };
-    default:
-      return { nullptr, {} };
+    return { nullptr, {} };
   }
+  const pisurf::PrimitiveInfo& entry = pisurf::CatalogueEntry(static_cast<PrimitiveType>(type));
+  switch (entry.Widget)
+  {
+    case pisurf::WidgetKind::Sphere:
+      return { "InteractiveSphere", { { "Center", "Center" }, { "Radius", entry.WidgetSize } } };
+    case pisurf::WidgetKind::Cylinder:
+      return { "InteractiveCylinder",
+        { { "Center", "Center" }, { "Axis", entry.WidgetDirection },
+          { "Radius", entry.WidgetSize } } };
+    case pisurf::WidgetKind::Plane:
+      return { "InteractivePlane",
+        { { "Origin", "Center" }, { "Normal", entry.WidgetDirection } } };
+    case pisurf::WidgetKind::Box:
+      return { "InteractiveBox",
+        { { "Position", "Center" }, { "Rotation", "Orientation" },
+          { "Scale", entry.WidgetSize }, { "UseReferenceBounds", "WidgetUseReferenceBounds" },
+          { "ReferenceBounds", "WidgetReferenceBounds" } } };
+    case pisurf::WidgetKind::Handle:
+      return { "InteractiveHandle", { { "WorldPosition", "Center" } } };
+  }
+  return { nullptr, {} };
+}
+
+// Two placements that bind the same functions to the same properties (by name: the
+// catalogue's strings need not share addresses).
+bool SameFunctions(const Placement& a, const Placement& b)
+{
+  return std::equal(a.Functions.begin(), a.Functions.end(), b.Functions.begin(),
+    b.Functions.end(), [](const auto& x, const auto& y) {
+      return std::strcmp(x.first, y.first) == 0 && std::strcmp(x.second, y.second) == 0;
+    });
 }
 
 // The box is always the unit box [-1, 1]^3 scaled by Radii: its reference-bounds
@@ -86,23 +94,31 @@ void HideReferenceBoundsControls(QWidget* widget)
 }
 
 // The property whose value a validation message of the core names (the message starts
-// with the parameter's model key), or nullptr.
+// with the parameter's model key: the longest that matches), or nullptr.
 const char* PropertyOfMessage(const std::string& message)
 {
-  static const std::pair<const char*, const char*> keys[] = { { "rotation axis", "RotationAxis" },
-    { "rotation angle", "RotationAngle" }, { "major_radius", "MajorRadius" },
-    { "minor_radius", "MinorRadius" }, { "radii", "Radii" }, { "radius", "Radius" },
-    { "exponent", "Exponent" }, { "normal", "Normal" }, { "angle", "Angle" },
-    { "expression", "Expression" }, { "center", "Center" }, { "scale", "Scale" },
+  std::vector<std::pair<const char*, const char*>> keys = { { "rotation axis", "RotationAxis" },
+    { "rotation angle", "RotationAngle" }, { "center", "Center" }, { "scale", "Scale" },
     { "axis", "Axis" } };
-  for (const auto& key : keys)
+  for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
   {
-    if (message.compare(0, std::strlen(key.first), key.first) == 0)
+    for (const pisurf::ParameterInfo& p : entry.Parameters)
     {
-      return key.second;
+      keys.emplace_back(p.Key, p.Property);
     }
   }
-  return nullptr;
+  const char* property = nullptr;
+  size_t longest = 0;
+  for (const auto& key : keys)
+  {
+    const size_t n = std::strlen(key.first);
+    if (n > longest && message.compare(0, n, key.first) == 0)
+    {
+      property = key.second;
+      longest = n;
+    }
+  }
+  return property;
 }
 
 // The primitive that the panel's values (unchecked: as typed, before Apply) define.
@@ -114,17 +130,33 @@ std::string PanelError(vtkSMProxy* proxy)
   };
   double v[3];
   primitive->SetType(vtkSMUncheckedPropertyHelper(proxy, "Type").GetAsInt());
+  // Every type's parameters (their properties hold the values of whichever type shows).
+  pisurf::PrimitiveSpec shape = primitive->GetSpec();
+  for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
+  {
+    for (const pisurf::ParameterInfo& p : entry.Parameters)
+    {
+      vtkSMUncheckedPropertyHelper value(proxy, p.Property);
+      switch (p.Kind)
+      {
+        case pisurf::ParameterKind::Number:
+          value.Get(p.Numbers(shape), p.Count);
+          break;
+        case pisurf::ParameterKind::Integer:
+          *p.Integer(shape) = value.GetAsInt();
+          break;
+        case pisurf::ParameterKind::Text:
+        {
+          const char* text = value.GetAsString();
+          *p.Text(shape) = text ? text : "";
+          break;
+        }
+      }
+    }
+  }
+  primitive->SetSpec(shape);
   get3("Center", v);
   primitive->SetCenter(v);
-  primitive->SetRadius(vtkSMUncheckedPropertyHelper(proxy, "Radius").GetAsDouble());
-  get3("Radii", v);
-  primitive->SetRadii(v);
-  primitive->SetMajorRadius(vtkSMUncheckedPropertyHelper(proxy, "MajorRadius").GetAsDouble());
-  primitive->SetMinorRadius(vtkSMUncheckedPropertyHelper(proxy, "MinorRadius").GetAsDouble());
-  primitive->SetExponent(vtkSMUncheckedPropertyHelper(proxy, "Exponent").GetAsInt());
-  get3("Normal", v);
-  primitive->SetNormal(v);
-  primitive->SetAngle(vtkSMUncheckedPropertyHelper(proxy, "Angle").GetAsDouble());
   get3("Axis", v);
   primitive->SetAxis(v);
   get3("RotationAxis", v);
@@ -132,8 +164,6 @@ std::string PanelError(vtkSMProxy* proxy)
   primitive->SetRotationAngle(vtkSMUncheckedPropertyHelper(proxy, "RotationAngle").GetAsDouble());
   get3("Orientation", v);
   primitive->SetOrientation(v);
-  const char* expression = vtkSMUncheckedPropertyHelper(proxy, "Expression").GetAsString();
-  primitive->SetExpression(expression ? expression : "");
   primitive->SetScale(vtkSMUncheckedPropertyHelper(proxy, "Scale").GetAsDouble());
   // vtkPiPrimitive reports an invalid primitive to the output window: this check is
   // silent (the GUI thread runs no other VTK code meanwhile), the source reports on Apply.
@@ -203,7 +233,7 @@ void pqPiPrimitivePlacementWidget::updateType()
   const Placement previous = PlacementOf(internals.CurrentType);
   const bool same = internals.Current && previous.PanelWidget && placement.PanelWidget &&
     std::strcmp(previous.PanelWidget, placement.PanelWidget) == 0 &&
-    previous.Functions == placement.Functions;
+    SameFunctions(previous, placement);
   internals.CurrentType = type;
   if (same)
   {

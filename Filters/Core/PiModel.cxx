@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiModel.h"
 
+#include "PiPrimitiveCatalogue.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -62,38 +64,50 @@ std::string String(const json& v, const std::string& path)
   return v.get<std::string>();
 }
 
-// The shape keys each type requires (and is the only one to allow).
-std::vector<std::string> ShapeKeys(PrimitiveType t)
+// The types' keys, for the message that names an unknown one.
+std::string TypeKeys()
 {
-  switch (t)
+  std::string list;
+  for (const PrimitiveInfo& entry : PrimitiveCatalogue())
   {
-    case PrimitiveType::Sphere:
-    case PrimitiveType::Cylinder:
-      return { "radius" };
-    case PrimitiveType::Ellipsoid:
-    case PrimitiveType::Hyperboloid1:
-    case PrimitiveType::Hyperboloid2:
-    case PrimitiveType::Paraboloid:
-    case PrimitiveType::HyperbolicParaboloid:
-      return { "radii" };
-    case PrimitiveType::Superellipsoid:
-      return { "radii", "exponent" };
-    case PrimitiveType::Torus:
-      return { "major_radius", "minor_radius" };
-    case PrimitiveType::Plane:
-      return { "normal" };
-    case PrimitiveType::Cone:
-      return { "angle" };
-    case PrimitiveType::Polynomial:
-      return { "expression" };
-    default:
-      return {};
+    list += (list.empty() ? "" : ", ") + std::string(entry.Key);
   }
+  return list;
 }
 
-size_t RadiiCount(PrimitiveType t)
+// The value of one of the type's parameters (its key is present in `j`).
+void ParseParameter(const json& v, const ParameterInfo& p, const std::string& path, PrimitiveSpec& s)
 {
-  return (t == PrimitiveType::Paraboloid || t == PrimitiveType::HyperbolicParaboloid) ? 2 : 3;
+  switch (p.Kind)
+  {
+    case ParameterKind::Number:
+      if (p.Count == 1)
+        *p.Numbers(s) = Number(v, path);
+      else
+        Vector(v, path, p.Numbers(s), static_cast<size_t>(p.Count));
+      break;
+    case ParameterKind::Integer:
+    {
+      // Checked here, before the conversion to int (BuildFactor checks the int).
+      const double e = Number(v, path);
+      if (e != std::floor(e) || std::fabs(e) > 1e9 || !Allows(p.Rule, e))
+      {
+        Fail(path, "must be " + ConstraintText(p.Rule));
+      }
+      *p.Integer(s) = static_cast<int>(e);
+      break;
+    }
+    case ParameterKind::Text:
+    {
+      std::string& text = *p.Text(s);
+      text = String(v, path);
+      if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+      {
+        Fail(path, "empty " + std::string(p.Key));
+      }
+      break;
+    }
+  }
 }
 
 PrimitiveSpec ParsePrimitive(const json& j, const std::string& path)
@@ -110,14 +124,15 @@ PrimitiveSpec ParsePrimitive(const json& j, const std::string& path)
   const std::string type = String(j["type"], path + ".type");
   if (!TypeFromString(type, s.Type))
   {
-    Fail(path + ".type", "unknown primitive type '" + type +
-        "' (sphere, ellipsoid, superellipsoid, torus, plane, cylinder, cone, hyperboloid1, "
-        "hyperboloid2, paraboloid, hyperbolic_paraboloid, polynomial)");
+    Fail(path + ".type", "unknown primitive type '" + type + "' (" + TypeKeys() + ")");
   }
-  const std::vector<std::string> shape = ShapeKeys(s.Type);
+  const PrimitiveInfo& entry = CatalogueEntry(s.Type);
   std::set<std::string> allowed = { "type", "name", "center", "axis", "rotation", "scale",
     "negate" };
-  allowed.insert(shape.begin(), shape.end());
+  for (const ParameterInfo& p : entry.Parameters)
+  {
+    allowed.insert(p.Key);
+  }
   for (auto it = j.begin(); it != j.end(); ++it)
   {
     if (!allowed.count(it.key()))
@@ -130,11 +145,11 @@ PrimitiveSpec ParsePrimitive(const json& j, const std::string& path)
       Fail(path, "unknown key '" + it.key() + "' for a " + type + " (allowed: " + list + ")");
     }
   }
-  for (const auto& k : shape)
+  for (const ParameterInfo& p : entry.Parameters)
   {
-    if (!j.contains(k))
+    if (!j.contains(p.Key))
     {
-      Fail(path, "a " + type + " needs the key '" + k + "'");
+      Fail(path, "a " + type + " needs the key '" + p.Key + "'");
     }
   }
 
@@ -171,34 +186,9 @@ PrimitiveSpec ParsePrimitive(const json& j, const std::string& path)
       Fail(path + ".negate", "expected true or false");
     s.Negate = j["negate"].get<bool>();
   }
-  if (j.contains("radius"))
-    s.Radius = Number(j["radius"], path + ".radius");
-  if (j.contains("radii"))
-    Vector(j["radii"], path + ".radii", s.Radii, RadiiCount(s.Type));
-  if (j.contains("major_radius"))
-    s.MajorRadius = Number(j["major_radius"], path + ".major_radius");
-  if (j.contains("minor_radius"))
-    s.MinorRadius = Number(j["minor_radius"], path + ".minor_radius");
-  if (j.contains("exponent"))
+  for (const ParameterInfo& p : entry.Parameters)
   {
-    const double e = Number(j["exponent"], path + ".exponent");
-    if (e != std::floor(e) || e < 2 || e > MaxDegree || static_cast<int>(e) % 2 != 0)
-    {
-      Fail(path + ".exponent", "must be an even integer from 2 to " + std::to_string(MaxDegree));
-    }
-    s.Exponent = static_cast<int>(e);
-  }
-  if (j.contains("normal"))
-    Vector(j["normal"], path + ".normal", s.Normal, 3);
-  if (j.contains("angle"))
-    s.Angle = Number(j["angle"], path + ".angle");
-  if (j.contains("expression"))
-  {
-    s.Expression = String(j["expression"], path + ".expression");
-    if (s.Expression.find_first_not_of(" \t\r\n") == std::string::npos)
-    {
-      Fail(path + ".expression", "empty expression");
-    }
+    ParseParameter(j[p.Key], p, path + "." + p.Key, s);
   }
   return s;
 }
@@ -470,24 +460,17 @@ std::string WriteModel(const Model& m)
     else if (s.Orient == Orientation::Rotation)
       q["rotation"] = { { "axis", std::vector<double>(s.RotationAxis, s.RotationAxis + 3) },
         { "angle", s.RotationAngle } };
-    for (const std::string& k : ShapeKeys(s.Type))
+    for (const ParameterInfo& p : CatalogueEntry(s.Type).Parameters)
     {
-      if (k == "radius")
-        q[k] = s.Radius;
-      else if (k == "radii")
-        q[k] = std::vector<double>(s.Radii, s.Radii + RadiiCount(s.Type));
-      else if (k == "exponent")
-        q[k] = s.Exponent;
-      else if (k == "major_radius")
-        q[k] = s.MajorRadius;
-      else if (k == "minor_radius")
-        q[k] = s.MinorRadius;
-      else if (k == "normal")
-        q[k] = std::vector<double>(s.Normal, s.Normal + 3);
-      else if (k == "angle")
-        q[k] = s.Angle;
-      else if (k == "expression")
-        q[k] = s.Expression;
+      PrimitiveSpec& values = const_cast<PrimitiveSpec&>(s); // the accessors only read here
+      if (p.Kind == ParameterKind::Integer)
+        q[p.Key] = *p.Integer(values);
+      else if (p.Kind == ParameterKind::Text)
+        q[p.Key] = *p.Text(values);
+      else if (p.Count == 1)
+        q[p.Key] = *p.Numbers(values);
+      else
+        q[p.Key] = std::vector<double>(p.Numbers(values), p.Numbers(values) + p.Count);
     }
     if (s.Scale != 1.0)
       q["scale"] = s.Scale;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiPrimitiveSpec.h"
 
+#include "PiPrimitiveCatalogue.h"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -10,26 +12,6 @@ namespace pisurf
 {
 namespace
 {
-struct TypeNames
-{
-  const char* Key;
-  const char* Label;
-};
-const TypeNames Names[] = {
-  { "sphere", "Sphere" },
-  { "ellipsoid", "Ellipsoid" },
-  { "superellipsoid", "Superellipsoid" },
-  { "torus", "Torus" },
-  { "plane", "Plane" },
-  { "cylinder", "Cylinder" },
-  { "cone", "Cone" },
-  { "hyperboloid1", "Hyperboloid1" },
-  { "hyperboloid2", "Hyperboloid2" },
-  { "paraboloid", "Paraboloid" },
-  { "hyperbolic_paraboloid", "HyperbolicParaboloid" },
-  { "polynomial", "Polynomial" },
-};
-
 constexpr double Pi = 3.14159265358979323846;
 
 bool Finite3(const double v[3])
@@ -49,36 +31,11 @@ double Norm(const double v[3])
   return m * std::sqrt(x * x + y * y + z * z);
 }
 
-// v / |v|, computed as (v / max|v_i|) / |v / max|v_i||, so that it never overflows.
-void Unit(const double v[3], double u[3])
-{
-  const double m = std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
-  const double s[3] = { v[0] / m, v[1] / m, v[2] / m };
-  const double n = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-  for (int i = 0; i < 3; ++i)
-  {
-    u[i] = s[i] / n;
-  }
-}
-
-Polynomial3 Var(int a)
-{
-  return Polynomial3::Variable(a);
-}
-Polynomial3 Const(double c)
-{
-  return Polynomial3::Constant(c);
-}
-Polynomial3 Sq(int a, double s)
-{ // (var/s)^2
-  return Var(a).Pow(2).Scaled(1.0 / (s * s));
-}
-
 // Rotation taking the unit vector a onto +z (the minimal one), so R·a = (0,0,1).
 void AlignToZ(const double axis[3], double R[3][3])
 {
   double a[3];
-  Unit(axis, a);
+  UnitVector(axis, a);
   // Rotation about k = a × z by the angle between a and z.
   const double k[3] = { a[1], -a[0], 0.0 };
   const double s = Norm(k);
@@ -94,34 +51,36 @@ void AlignToZ(const double axis[3], double R[3][3])
   RotationMatrix(k, std::atan2(s, c) * 180.0 / Pi, R);
 }
 
-bool Positive(double v, const char* what, std::string& error)
-{
-  if (!std::isfinite(v) || v <= 0.0)
-  {
-    error = std::string(what) + " must be a positive finite number";
-    return false;
-  }
-  return true;
 }
+
+void UnitVector(const double v[3], double u[3])
+{
+  const double m = std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
+  const double s[3] = { v[0] / m, v[1] / m, v[2] / m };
+  const double n = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  for (int i = 0; i < 3; ++i)
+  {
+    u[i] = s[i] / n;
+  }
 }
 
 const char* TypeKey(PrimitiveType t)
 {
-  return Names[static_cast<int>(t)].Key;
+  return CatalogueEntry(t).Key;
 }
 
 const char* TypeLabel(PrimitiveType t)
 {
-  return Names[static_cast<int>(t)].Label;
+  return CatalogueEntry(t).Label;
 }
 
 bool TypeFromString(const std::string& s, PrimitiveType& t)
 {
-  for (int i = 0; i < static_cast<int>(PrimitiveType::NumberOfTypes); ++i)
+  for (const PrimitiveInfo& entry : PrimitiveCatalogue())
   {
-    if (s == Names[i].Key || s == Names[i].Label)
+    if (s == entry.Key || s == entry.Label)
     {
-      t = static_cast<PrimitiveType>(i);
+      t = entry.Type;
       return true;
     }
   }
@@ -131,7 +90,7 @@ bool TypeFromString(const std::string& s, PrimitiveType& t)
 void RotationMatrix(const double axis[3], double angleDeg, double R[3][3])
 {
   double u[3];
-  Unit(axis, u);
+  UnitVector(axis, u);
   const double x = u[0], y = u[1], z = u[2];
   const double th = angleDeg * Pi / 180.0;
   const double c = std::cos(th), s = std::sin(th), t = 1.0 - c;
@@ -190,54 +149,10 @@ bool OrientationMatrix(const PrimitiveSpec& s, double R[3][3], std::string& erro
   return true;
 }
 
-namespace
-{
-// A polynomial written about a point other than the origin (the cup's handle,
-// ((x − 2.2)² + (z + 1)² + y² + 0.49)² − 2((x − 2.2)² + (z + 1)²)) expands to many more
-// terms than about that point (35 instead of 10), and every evaluation pays for each.
-// Per axis, the shift σ that removes the pure x^(m−1) term (m the highest power of x,
-// present alone) centres it: σ = −c(m−1)/(m·c(m)). The expression as written is then
-// expanded again in q + σ (ExpandShifted: shifts that cancel symbolically cancel
-// exactly), and that form is kept if it has fewer terms.
-void CentreExpression(const ExpressionNode& tree, Polynomial3& p, double shift[3])
-{
-  double sigma[3] = { 0, 0, 0 };
-  bool any = false;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int m = p.GetAxisDegree(a);
-    if (m < 2)
-    {
-      continue;
-    }
-    int top[3] = { 0, 0, 0 }, next[3] = { 0, 0, 0 };
-    top[a] = m;
-    next[a] = m - 1;
-    const double cm = p.GetCoefficient(top[0], top[1], top[2]);
-    const double cn = p.GetCoefficient(next[0], next[1], next[2]);
-    const double s = cm != 0.0 ? -cn / (m * cm) : 0.0;
-    if (s != 0.0 && std::isfinite(s))
-    {
-      sigma[a] = s;
-      any = true;
-    }
-  }
-  Polynomial3 centred;
-  if (!any || !ExpandShifted(tree, sigma, centred) ||
-    centred.GetTerms().size() >= p.GetTerms().size())
-  {
-    return;
-  }
-  p = centred;
-  std::copy(sigma, sigma + 3, shift);
-}
-}
-
 bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
   PolynomialFactor& factor, std::string& error)
 {
-  const int type = static_cast<int>(s.Type);
-  if (type < 0 || type >= static_cast<int>(PrimitiveType::NumberOfTypes))
+  if (!IsPrimitiveType(static_cast<int>(s.Type)))
   {
     error = "unknown primitive type";
     return false;
@@ -260,125 +175,23 @@ bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
     return false;
   }
 
-  auto radii = [&](int n) {
-    static const char* names[3] = { "radii[0]", "radii[1]", "radii[2]" };
-    for (int i = 0; i < n; ++i)
-    {
-      if (!Positive(s.Radii[i], names[i], error))
-      {
-        return false;
-      }
-    }
-    return true;
-  };
-
-  Polynomial3 p;
-  std::shared_ptr<const ExpressionNode> natural;
-  double shift[3] = { 0, 0, 0 }; // polynomials: the expression's variables are q + shift
-  double half[3] = { -1, -1, -1 }; // local half extents; negative: unbounded
-  switch (s.Type)
+  const PrimitiveInfo& entry = CatalogueEntry(s.Type);
+  for (const ParameterInfo& parameter : entry.Parameters)
   {
-    case PrimitiveType::Sphere:
-      if (!Positive(s.Radius, "radius", error))
-        return false;
-      p = Var(0).Pow(2) + Var(1).Pow(2) + Var(2).Pow(2) - Const(s.Radius * s.Radius);
-      half[0] = half[1] = half[2] = s.Radius;
-      break;
-    case PrimitiveType::Ellipsoid:
-      if (!radii(3))
-        return false;
-      p = Sq(0, s.Radii[0]) + Sq(1, s.Radii[1]) + Sq(2, s.Radii[2]) - Const(1);
-      std::copy(s.Radii, s.Radii + 3, half);
-      break;
-    case PrimitiveType::Superellipsoid:
-      if (!radii(3))
-        return false;
-      if (s.Exponent < 2 || s.Exponent % 2 != 0 || s.Exponent > MaxDegree)
-      {
-        error = "exponent must be an even integer from 2 to " + std::to_string(MaxDegree) +
-          " (got " + std::to_string(s.Exponent) + ")";
-        return false;
-      }
-      p = Var(0).Scaled(1.0 / s.Radii[0]).Pow(s.Exponent) +
-        Var(1).Scaled(1.0 / s.Radii[1]).Pow(s.Exponent) +
-        Var(2).Scaled(1.0 / s.Radii[2]).Pow(s.Exponent) - Const(1);
-      std::copy(s.Radii, s.Radii + 3, half);
-      break;
-    case PrimitiveType::Torus:
+    if (!CheckParameter(s, parameter, error))
     {
-      if (!Positive(s.MajorRadius, "major_radius", error) ||
-        !Positive(s.MinorRadius, "minor_radius", error))
-        return false;
-      const double R2 = s.MajorRadius * s.MajorRadius, r2 = s.MinorRadius * s.MinorRadius;
-      const Polynomial3 uv = Var(0).Pow(2) + Var(1).Pow(2);
-      p = (uv + Var(2).Pow(2) + Const(R2 - r2)).Pow(2) - uv.Scaled(4.0 * R2);
-      half[0] = half[1] = s.MajorRadius + s.MinorRadius;
-      half[2] = s.MinorRadius;
-      break;
-    }
-    case PrimitiveType::Plane:
-    {
-      if (!Finite3(s.Normal) || Norm(s.Normal) == 0.0)
-      {
-        error = "normal must be a non-zero vector of finite numbers";
-        return false;
-      }
-      double n[3];
-      Unit(s.Normal, n);
-      p = Var(0).Scaled(n[0]) + Var(1).Scaled(n[1]) + Var(2).Scaled(n[2]);
-      break;
-    }
-    case PrimitiveType::Cylinder:
-      if (!Positive(s.Radius, "radius", error))
-        return false;
-      p = Var(0).Pow(2) + Var(1).Pow(2) - Const(s.Radius * s.Radius);
-      break;
-    case PrimitiveType::Cone:
-    {
-      if (!std::isfinite(s.Angle) || s.Angle <= 0.0 || s.Angle >= 90.0)
-      {
-        error = "angle must be a half-angle in degrees strictly between 0 and 90";
-        return false;
-      }
-      const double t = std::tan(s.Angle * Pi / 180.0);
-      p = Var(0).Pow(2) + Var(1).Pow(2) - Var(2).Pow(2).Scaled(t * t);
-      break;
-    }
-    case PrimitiveType::Hyperboloid1:
-      if (!radii(3))
-        return false;
-      p = Sq(0, s.Radii[0]) + Sq(1, s.Radii[1]) - Sq(2, s.Radii[2]) - Const(1);
-      break;
-    case PrimitiveType::Hyperboloid2:
-      if (!radii(3))
-        return false;
-      p = Sq(2, s.Radii[2]) - Sq(0, s.Radii[0]) - Sq(1, s.Radii[1]) - Const(1);
-      break;
-    case PrimitiveType::Paraboloid:
-      if (!radii(2))
-        return false;
-      p = Sq(0, s.Radii[0]) + Sq(1, s.Radii[1]) - Var(2);
-      break;
-    case PrimitiveType::HyperbolicParaboloid:
-      if (!radii(2))
-        return false;
-      p = Sq(0, s.Radii[0]) - Sq(1, s.Radii[1]) - Var(2);
-      break;
-    case PrimitiveType::Polynomial:
-    {
-      std::string why;
-      if (!ParseExpression(s.Expression, parameters, p, why, &natural))
-      {
-        error = "expression: " + why;
-        return false;
-      }
-      CentreExpression(*natural, p, shift);
-      break;
-    }
-    default:
-      error = "unknown primitive type";
       return false;
+    }
   }
+  PrimitiveShape shape;
+  if (!entry.Build(s, parameters, shape, error))
+  {
+    return false;
+  }
+  Polynomial3& p = shape.Poly;
+  const std::shared_ptr<const ExpressionNode>& natural = shape.Natural;
+  const double* shift = shape.Shift; // polynomials: the expression's variables are q + shift
+  const double* half = shape.Half;   // local half extents; negative: unbounded
   p = p.Scaled(s.Negate ? -s.Scale : s.Scale);
   if (!p.IsFinite())
   {

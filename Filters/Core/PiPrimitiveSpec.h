@@ -30,6 +30,8 @@
 namespace pisurf
 {
 
+/// The types, in the order of their entries in PrimitiveCatalogue() (PiPrimitiveCatalogue.h),
+/// which says everything else about them.
 enum class PrimitiveType
 {
   Sphere = 0,
@@ -83,12 +85,15 @@ struct PrimitiveSpec
   bool Negate = false;
 };
 
-/// Checks every parameter of `spec` (positive radii, even exponent >= 2, non-zero normal
-/// and axes, angle in (0, 90), finite numbers, non-zero scale, parsable expression).
-/// On failure returns false with a message naming the parameter.
+/// Checks every parameter of `spec` (centre, scale and orientation, then the type's
+/// parameters against their constraints in PiPrimitiveCatalogue.h) and builds the type's
+/// polynomial (its catalogue entry's builder). On failure returns false with a message
+/// naming the parameter.
 bool BuildFactor(const PrimitiveSpec& spec, const ParameterMap& parameters,
   PolynomialFactor& factor, std::string& error);
 
+/// v / |v| for a non-zero finite v, without overflow for extreme components.
+void UnitVector(const double v[3], double u[3]);
 /// Rotation matrix of `angleDeg` degrees about `axis` (need not be unit), right-handed.
 void RotationMatrix(const double axis[3], double angleDeg, double R[3][3]);
 /// The primitive's local frame from its orientation: local = R·(p − center), so the
