@@ -72,7 +72,7 @@
  * Output port 1 (GeneratePrimitives): the primitives themselves, each meshed alone on
  * the mesh's grid, kept while the factors, the grid, ProjectVertices and the piece stay
  * the same (a change of the blending alone re-meshes port 0 only). With
- * PrimitivesOnDemand (on in ParaView) they are computed only when port 1 itself is
+ * PrimitivesOnDemand they are computed only when port 1 itself is
  * asked for (a view showing it, `UpdatePipeline(proxy=..., port=1)`, `Update(1)`), not
  * when only the mesh is.
  *
@@ -240,8 +240,8 @@ public:
   /// With GeneratePrimitives: compute port 1 only when port 1 itself is updated
   /// (`Update(1)`, a consumer's request from port 1), not when port 0 is. Off by default
   /// (a VTK mapper updates its input algorithm's first port whichever port it shows,
-  /// and `Update()` then `GetOutput(1)` expects both); on in ParaView's proxies, whose
-  /// views ask for each port they show.
+  /// and `Update()` then `GetOutput(1)` expects both). ParaView's proxies do not expose
+  /// it: ParaView's Show updates every output port of a source.
   vtkSetMacro(PrimitivesOnDemand, bool);
   vtkGetMacro(PrimitivesOnDemand, bool);
   vtkBooleanMacro(PrimitivesOnDemand, bool);
