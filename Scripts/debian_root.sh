@@ -53,16 +53,30 @@ root_run() {
   mkdir -p "$dir$ROOT"
   # The host's /tmp is shared so that `xvfb-run -a` inside sees the displays (X lock
   # files) of the host: abstract X sockets are per network namespace, not per root.
+  # ROOT_OVERLAY=1: the root is the lower layer of an overlay whose upper layer is thrown
+  # away afterwards, so the cached root stays as it was made (a clean system each time).
+  local layer=""
+  if [ "${ROOT_OVERLAY:-}" = 1 ]; then
+    layer="$(mktemp -d "$ROOTS_DIR/.layer.XXXXXX")"
+    mkdir -p "$layer/upper" "$layer/work" "$layer/merged"
+  fi
+  local status=0
   unshare --mount --propagation private -- /bin/sh -ec '
-    dir="$1"; src="$2"; shift 2
+    dir="$1"; src="$2"; layer="$3"; shift 3
+    if [ -n "$layer" ]; then
+      mount -t overlay overlay -o "lowerdir=$dir,upperdir=$layer/upper,workdir=$layer/work" "$layer/merged"
+      dir="$layer/merged"
+    fi
     mount -t proc proc "$dir/proc"
     mount --rbind /dev "$dir/dev"
     mount --rbind /sys "$dir/sys"
     mount --bind /tmp "$dir/tmp"
     mount --bind "$src" "$dir$src"
-    exec chroot "$dir" "$@"' sh "$dir" "$ROOT" \
+    exec chroot "$dir" "$@"' sh "$dir" "$ROOT" "$layer" \
     env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin HOME=/root \
-    LANG=C.UTF-8 TERM="${TERM:-dumb}" CI="${CI:-}" JOBS="$JOBS" "$@"
+    LANG=C.UTF-8 TERM="${TERM:-dumb}" CI="${CI:-}" JOBS="$JOBS" "$@" || status=$?
+  if [ -n "$layer" ]; then rm -rf --one-file-system "$layer"; fi
+  return "$status"
 }
 
 # ensure_root RELEASE FLAVOUR: print the directory of a finished root, making it if needed.
