@@ -13,86 +13,67 @@ set(pisurfaces_vtk_components
   TestingRendering RenderingOpenGL2 RenderingCore InteractionStyle InteractionWidgets
   RenderingFreeType)
 
-# Debian 13's VTK CMake packages name the Python extension modules `vtkmodules/vtkX.so`
-# while the package ships `vtkmodules/vtkX.cpython-313-x86_64-linux-gnu.so`. The
-# generated targets file checks every file it names and stops at the first missing one,
-# before any code of ours could fix the targets. So the affected targets files are copied
-# into the build tree with the real file names, and find_package reads the copies.
-function (pisurfaces_fix_python_module_names package_dir out_var)
-  file(GLOB targets_files "${package_dir}/*targets-*.cmake" "${package_dir}/*-targets-*.cmake")
-  list(REMOVE_DUPLICATES targets_files)
-  set(patched FALSE)
-  foreach (targets_file IN LISTS targets_files)
-    file(READ "${targets_file}" text)
-    string(REGEX MATCHALL "[^\"]*/vtkmodules/vtk[A-Za-z0-9]+\\.so" named "${text}")
-    if (NOT named)
-      continue ()
-    endif ()
-    list(REMOVE_DUPLICATES named)
-    foreach (path IN LISTS named)
-      string(REPLACE "\${_IMPORT_PREFIX}" "${pisurfaces_import_prefix}" real_path "${path}")
-      if (EXISTS "${real_path}")
-        continue ()
-      endif ()
-      get_filename_component(dir "${real_path}" DIRECTORY)
-      get_filename_component(stem "${real_path}" NAME_WE)
-      file(GLOB candidates "${dir}/${stem}.cpython-*.so")
-      if (candidates)
-        list(GET candidates 0 candidate)
-        get_filename_component(candidate_name "${candidate}" NAME)
-        get_filename_component(path_dir "${path}" DIRECTORY)
-        string(REPLACE "${path}\"" "${path_dir}/${candidate_name}\"" text "${text}")
-        set(patched TRUE)
-      endif ()
-    endforeach ()
-    set(pisurfaces_patched_${targets_file} "${text}" PARENT_SCOPE)
-  endforeach ()
-  set(${out_var} ${patched} PARENT_SCOPE)
-endfunction ()
-
-# Copies the CMake package in package_dir to the build tree (one level of sub-folders,
-# e.g. ParaView's vtk/), with the targets files fixed, and returns the copy's path. The
-# copies compute _IMPORT_PREFIX from their own location, so it is pinned to the real one.
+# Debian 13's ParaView CMake package names its Python extension modules
+# `.../dist-packages/{vtkmodules,paraview/modules}/vtkX.so` while the package ships
+# `vtkX.cpython-313-x86_64-linux-gnu.so`. The generated targets files check every file
+# they name and stop at the first missing one, inside find_package, before any code of
+# ours could fix the targets' IMPORTED_LOCATION. So the package is copied into the build
+# tree with the real file names, and find_package reads the copy. Returns package_dir
+# itself when nothing needs fixing (Debian 12).
 function (pisurfaces_overlay_package package_dir import_prefix out_var)
-  set(pisurfaces_import_prefix "${import_prefix}")
-  set(any FALSE)
-  set(overlay "${CMAKE_BINARY_DIR}/cmake-overlay/${package_dir}")
   file(GLOB_RECURSE files RELATIVE "${package_dir}" "${package_dir}/*.cmake")
-  foreach (dir IN ITEMS "" vtk)
-    if (NOT IS_DIRECTORY "${package_dir}/${dir}")
-      continue ()
+  set(overlay "${CMAKE_BINARY_DIR}/cmake-overlay/${package_dir}")
+  set(fixed 0)
+  foreach (file IN LISTS files)
+    file(READ "${package_dir}/${file}" text)
+    if (file MATCHES "targets-[a-z]+\\.cmake$")
+      string(REGEX MATCHALL "[^\"]*/dist-packages/[^\"]*/vtk[A-Za-z0-9_]+\\.so\"" named "${text}")
+      list(REMOVE_DUPLICATES named)
+      foreach (quoted IN LISTS named)
+        string(REPLACE "\"" "" path "${quoted}")
+        string(REPLACE "\${_IMPORT_PREFIX}" "${import_prefix}" real_path "${path}")
+        if (EXISTS "${real_path}")
+          continue ()
+        endif ()
+        get_filename_component(dir "${real_path}" DIRECTORY)
+        get_filename_component(stem "${real_path}" NAME_WE)
+        file(GLOB candidates "${dir}/${stem}.cpython-*.so")
+        if (candidates)
+          list(GET candidates 0 candidate)
+          get_filename_component(name "${candidate}" NAME)
+          get_filename_component(path_dir "${path}" DIRECTORY)
+          string(REPLACE "${quoted}" "${path_dir}/${name}\"" text "${text}")
+          math(EXPR fixed "${fixed} + 1")
+        endif ()
+      endforeach ()
     endif ()
-    pisurfaces_fix_python_module_names("${package_dir}/${dir}" patched)
-    if (patched)
-      set(any TRUE)
+    # The copy would compute the install prefix from its own place: pin the real one.
+    if (file MATCHES "prefix\\.cmake$")
+      get_filename_component(real_dir "${package_dir}/${file}" DIRECTORY)
+      string(REPLACE "\${CMAKE_CURRENT_LIST_DIR}" "${real_dir}" text "${text}")
     endif ()
-    file(GLOB targets_files "${package_dir}/${dir}/*targets-*.cmake" "${package_dir}/${dir}/*-targets-*.cmake")
-    foreach (targets_file IN LISTS targets_files)
-      if (DEFINED pisurfaces_patched_${targets_file})
-        set(pisurfaces_overlay_text_${targets_file} "${pisurfaces_patched_${targets_file}}")
-      endif ()
-    endforeach ()
+    string(REGEX REPLACE "get_filename_component\\(_IMPORT_PREFIX [^\n]*\n" "" text "${text}")
+    string(REGEX REPLACE "if\\(_IMPORT_PREFIX STREQUAL \"/\"\\)\n  set\\(_IMPORT_PREFIX \"\"\\)\nendif\\(\\)"
+      "set(_IMPORT_PREFIX \"${import_prefix}\")" text "${text}")
+    set(text_${file} "${text}")
   endforeach ()
-  if (NOT any)
+  if (fixed EQUAL 0)
     set(${out_var} "${package_dir}" PARENT_SCOPE)
     return ()
   endif ()
   file(REMOVE_RECURSE "${overlay}")
   foreach (file IN LISTS files)
-    set(source "${package_dir}/${file}")
-    if (DEFINED pisurfaces_overlay_text_${source})
-      set(text "${pisurfaces_overlay_text_${source}}")
-    else ()
-      file(READ "${source}" text)
-    endif ()
-    # The prefix computed from the file's own place would point into the build tree.
-    string(REGEX REPLACE "get_filename_component\\(_IMPORT_PREFIX [^\n]*\n" "" text "${text}")
-    string(REPLACE "set(_IMPORT_PREFIX \"\")" "set(_IMPORT_PREFIX \"\")" text "${text}")
-    string(REGEX REPLACE "\nif\\(_IMPORT_PREFIX STREQUAL \"/\"\\)\n  set\\(_IMPORT_PREFIX \"\"\\)\nendif\\(\\)"
-      "\nset(_IMPORT_PREFIX \"${import_prefix}\")" text "${text}")
-    file(WRITE "${overlay}/${file}" "${text}")
+    file(WRITE "${overlay}/${file}" "${text_${file}}")
   endforeach ()
-  message(STATUS "PiSurfaces: Debian's VTK Python module file names fixed in ${overlay}")
+  # The package's other files (templates, XSL, scripts) as links to the originals.
+  file(GLOB_RECURSE others RELATIVE "${package_dir}" "${package_dir}/*")
+  list(FILTER others EXCLUDE REGEX "\\.cmake$")
+  foreach (file IN LISTS others)
+    get_filename_component(dir "${overlay}/${file}" DIRECTORY)
+    file(MAKE_DIRECTORY "${dir}")
+    file(CREATE_LINK "${package_dir}/${file}" "${overlay}/${file}" SYMBOLIC)
+  endforeach ()
+  message(STATUS "PiSurfaces: ${fixed} Python module file names of Debian's ParaView fixed in ${overlay}")
   set(${out_var} "${overlay}" PARENT_SCOPE)
 endfunction ()
 
@@ -126,6 +107,13 @@ else ()
 endif ()
 message(STATUS "PiSurfaces: building against ${pisurfaces_stack}")
 file(WRITE "${CMAKE_BINARY_DIR}/pisurfaces-stack.txt" "${pisurfaces_stack}\n")
+
+# The Qt that ParaView's client libraries use (5.11: Qt 5 only; 5.13 says which).
+if (DEFINED PARAVIEW_QT_MAJOR_VERSION)
+  set(PISURFACES_QT "Qt${PARAVIEW_QT_MAJOR_VERSION}")
+else ()
+  set(PISURFACES_QT Qt5)
+endif ()
 
 # The Qt editor links ParaView's pqComponents, whose imported link interface names
 # third-party targets of libraries Debian ships inside ParaView's VTK (libxml2, HDF5,
