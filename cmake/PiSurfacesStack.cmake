@@ -48,10 +48,9 @@ function (pisurfaces_overlay_package package_dir import_prefix out_var)
       endforeach ()
     endif ()
     # The copy would compute the install prefix from its own place: pin the real one.
-    if (file MATCHES "prefix\\.cmake$")
-      get_filename_component(real_dir "${package_dir}/${file}" DIRECTORY)
-      string(REPLACE "\${CMAKE_CURRENT_LIST_DIR}" "${real_dir}" text "${text}")
-    endif ()
+    get_filename_component(real_dir "${package_dir}/${file}" DIRECTORY)
+    string(REPLACE "set(_vtk_module_import_prefix \"\${CMAKE_CURRENT_LIST_DIR}\")"
+      "set(_vtk_module_import_prefix \"${real_dir}\")" text "${text}")
     string(REGEX REPLACE "get_filename_component\\(_IMPORT_PREFIX [^\n]*\n" "" text "${text}")
     string(REGEX REPLACE "if\\(_IMPORT_PREFIX STREQUAL \"/\"\\)\n  set\\(_IMPORT_PREFIX \"\"\\)\nendif\\(\\)"
       "set(_IMPORT_PREFIX \"${import_prefix}\")" text "${text}")
