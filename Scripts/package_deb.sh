@@ -85,6 +85,8 @@ Description: products of implicit surfaces (Pi-surfaces) for ParaView
  paraview --plugins=PiSurfaces, LoadDistributedPlugin('PiSurfaces')) and the
  pisurfaces Python package for pvpython.
 CONTROL
+# The libraries in the multiarch directory: ld.so's cache is refreshed on install/removal.
+echo "activate-noawait ldconfig" >"$stage/DEBIAN/triggers"
 deb="$OUT/pisurfaces_${deb_version}_$arch.deb"
 dpkg-deb --root-owner-group --build "$stage" "$deb" >/dev/null
 echo "$deb"
