@@ -85,6 +85,13 @@ Description: products of implicit surfaces (Pi-surfaces) for ParaView
  paraview --plugins=PiSurfaces, LoadDistributedPlugin('PiSurfaces')) and the
  pisurfaces Python package for pvpython.
 CONTROL
+# pvpython writes __pycache__ into the package's folder: removed with the package.
+cat >"$stage/DEBIAN/prerm" <<'PRERM'
+#!/bin/sh
+set -e
+rm -rf /usr/lib/python3/dist-packages/pisurfaces/__pycache__
+PRERM
+chmod 755 "$stage/DEBIAN/prerm"
 # The libraries in the multiarch directory: ld.so's cache is refreshed on install/removal.
 echo "activate-noawait ldconfig" >"$stage/DEBIAN/triggers"
 deb="$OUT/pisurfaces_${deb_version}_$arch.deb"
