@@ -105,6 +105,11 @@ else ()
   set(pisurfaces_stack "VTK ${VTK_VERSION}")
 endif ()
 message(STATUS "PiSurfaces: building against ${pisurfaces_stack}")
+
+# gemmi: header-only in Debian 12 (no CMake package); Debian 13's 0.6 has a CMake package
+# whose gemmi::gemmi_cpp (a static library) the molecule reader must link.
+find_package(ZLIB REQUIRED)
+find_package(gemmi QUIET CONFIG)
 file(WRITE "${CMAKE_BINARY_DIR}/pisurfaces-stack.txt" "${pisurfaces_stack}\n")
 
 # The Qt that ParaView's client libraries use (5.11: Qt 5 only; 5.13 says which).
