@@ -106,10 +106,17 @@ else ()
 endif ()
 message(STATUS "PiSurfaces: building against ${pisurfaces_stack}")
 
-# gemmi: header-only in Debian 12 (no CMake package); Debian 13's 0.6 has a CMake package
-# whose gemmi::gemmi_cpp (a static library) the molecule reader must link.
+# gemmi: header-only in Debian 12; Debian 13's 0.6 compiles part of itself into
+# libgemmi_cpp.a, which the molecule reader must link. (Its CMake package cannot be used:
+# it names the program /usr/bin/gemmi of another package and stops when it is missing.)
 find_package(ZLIB REQUIRED)
-find_package(gemmi QUIET CONFIG)
+find_library(PISURFACES_GEMMI_CPP NAMES gemmi_cpp)
+if (PISURFACES_GEMMI_CPP)
+  add_library(PiSurfaces::gemmi_cpp STATIC IMPORTED)
+  set_target_properties(PiSurfaces::gemmi_cpp PROPERTIES
+    IMPORTED_LOCATION "${PISURFACES_GEMMI_CPP}"
+    INTERFACE_LINK_LIBRARIES ZLIB::ZLIB)
+endif ()
 file(WRITE "${CMAKE_BINARY_DIR}/pisurfaces-stack.txt" "${pisurfaces_stack}\n")
 
 # The Qt that ParaView's client libraries use (5.11: Qt 5 only; 5.13 says which).
