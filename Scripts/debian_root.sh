@@ -32,6 +32,13 @@ debian_mirror() {
 }
 
 root_fail() {
+  local free_kb
+  free_kb="$(df -Pk "$ROOTS_DIR" 2>/dev/null | awk 'NR == 2 { print $4 }')"
+  if [ -n "$free_kb" ] && [ "$free_kb" -lt $((200 * 1024)) ]; then
+    log "FAILED: $1: the disk of $ROOTS_DIR is full ($((free_kb / 1024)) MB free)"
+    log "retry: free 5 GB there (or set PISURFACES_ROOTS_DIR), then run the same command again"
+    exit 1
+  fi
   log "FAILED: $1"
   log "retry: $2"
   exit 1
