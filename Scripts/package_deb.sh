@@ -27,6 +27,11 @@ pv_version="$(dpkg-query -W -f='${Version}' paraview 2>/dev/null)" ||
 pv_series="$(sed -E 's/^ParaView ([0-9]+\.[0-9]+).*/\1/' "$BUILD/pisurfaces-stack.txt")"
 plugin_dir="/usr/lib/$multiarch/paraview-$pv_series/plugins"
 [ -d "$plugin_dir" ] || die "$plugin_dir does not exist: is this build for the system's ParaView ($(cat "$BUILD/pisurfaces-stack.txt"))?"
+# Debian 13's paraview ships its own paraview.conf in its library directory, read in a way
+# not examined yet: the package is made for Debian 12's layout only, for now.
+if [ -e "/usr/lib/$multiarch/paraview-$pv_series/paraview.conf" ]; then
+  die "this ParaView ($pv_series) reads /usr/lib/$multiarch/paraview-$pv_series/paraview.conf; packaging for it is not supported yet (Debian 12's 5.11 is)"
+fi
 if dpkg -S /usr/bin/paraview.conf >/dev/null 2>&1 &&
    ! dpkg -S /usr/bin/paraview.conf | grep -q '^pisurfaces:'; then
   die "/usr/bin/paraview.conf belongs to $(dpkg -S /usr/bin/paraview.conf | cut -d: -f1); not taking it over"
