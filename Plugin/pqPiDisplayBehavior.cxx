@@ -6,6 +6,7 @@
 #include "pqRepresentation.h"
 #include "pqServerManagerModel.h"
 #include "pqUndoStack.h"
+#include "pqPiParaViewCompat.h"
 #include "vtkDataObject.h"
 #include "vtkMath.h"
 #include "vtkPVArrayInformation.h"
@@ -13,7 +14,6 @@
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiSurface.h"
 #include "vtkSMTransferFunctionManager.h"
-#include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
@@ -278,7 +278,7 @@ bool pqPiDisplayBehavior::ApplyDefaults(vtkSMProxy* representation)
     // Each new primitive in the next colour of the palette, as in the paper's figures.
     static int primitives = 0;
     const double* colour = Palette[primitives++ % 8];
-    vtkSMPVRepresentationProxy::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
+    pqPiCompat::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
     vtkSMPropertyHelper(representation, "DiffuseColor").Set(colour, 3);
     if (representation->GetProperty("AmbientColor"))
     {
@@ -296,7 +296,7 @@ bool pqPiDisplayBehavior::ApplyDefaults(vtkSMProxy* representation)
   const bool inside = SurfaceInsidePrimitives(producer);
   if (port == 0)
   {
-    vtkSMPVRepresentationProxy::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
+    pqPiCompat::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
     const double grey[3] = { DefaultGrey, DefaultGrey, DefaultGrey };
     vtkSMPropertyHelper(representation, "DiffuseColor").Set(grey, 3);
     if (representation->GetProperty("AmbientColor"))
@@ -309,13 +309,13 @@ bool pqPiDisplayBehavior::ApplyDefaults(vtkSMProxy* representation)
   {
     // Nothing to show (Pi Product without GeneratePrimitives): no colouring by an
     // absent array.
-    vtkSMPVRepresentationProxy::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
+    pqPiCompat::SetScalarColoring(representation, nullptr, vtkDataObject::POINT);
     vtkSMPropertyHelper(representation, "Visibility").Set(0);
   }
   else
   {
     // Each primitive in its own colour.
-    vtkSMPVRepresentationProxy::SetScalarColoring(representation, "Factor", vtkDataObject::POINT);
+    pqPiCompat::SetScalarColoring(representation, "Factor", vtkDataObject::POINT);
     auto* source = vtkSMSourceProxy::SafeDownCast(producer);
     vtkPVArrayInformation* factor =
       source->GetDataInformation(1)->GetArrayInformation("Factor", vtkDataObject::POINT);

@@ -40,7 +40,9 @@ def digest(data):
         sha.update(values.tobytes())
 
     sha.update(data.GetClassName().encode())
-    if hasattr(data, "GetPoints") and data.GetPoints() is not None:
+    # Image data's points are its dimensions, origin and spacing (hashed below); VTK 9.4
+    # (ParaView 5.13's 9.3.20240617) also lists them as implicit points: left out.
+    if not data.IsA("vtkImageData") and hasattr(data, "GetPoints") and data.GetPoints() is not None:
         add("points", data.GetPoints().GetData())
     if hasattr(data, "GetDimensions"):
         sha.update(repr((data.GetDimensions(), data.GetOrigin(), data.GetSpacing())).encode())

@@ -15,9 +15,9 @@
 #include "pqServerManagerModel.h"
 #include "pqServerResource.h"
 #include "pqView.h"
+#include "pqPiParaViewCompat.h"
 #include "vtkDataObject.h"
 #include "vtkNew.h"
-#include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPluginManager.h"
 #include "vtkSMPropertyHelper.h"
@@ -50,7 +50,7 @@ bool TranslucentGrey(vtkSMProxy* representation)
   double colour[3];
   vtkSMPropertyHelper(representation, "DiffuseColor").Get(colour, 3);
   return Opacity(representation) < 1 && ColorArray(representation).empty() &&
-    !vtkSMPVRepresentationProxy::GetUsingScalarColoring(representation) &&
+    !pqPiCompat::GetUsingScalarColoring(representation) &&
     colour[0] == colour[1] && colour[1] == colour[2] && colour[0] > 0.3 && colour[0] < 0.9;
 }
 }
@@ -89,7 +89,7 @@ int main(int argc, char* argv[])
     "the Pi Surface is translucent grey: opacity " << Opacity(surfaceShown) << ", colour array '"
                                                    << ColorArray(surfaceShown) << "'");
   CHECK(primitivesShown && ColorArray(primitivesShown) == "Factor" &&
-      vtkSMPVRepresentationProxy::GetUsingScalarColoring(primitivesShown) &&
+      pqPiCompat::GetUsingScalarColoring(primitivesShown) &&
       Opacity(primitivesShown) == 1,
     "the Primitives port is opaque and coloured by Factor, not '" << ColorArray(primitivesShown)
                                                                    << "'");
@@ -109,7 +109,7 @@ int main(int argc, char* argv[])
 
   // The user's choice stays: hidden and shown again, the representation is not new.
   vtkSMPropertyHelper(surfaceShown, "Opacity").Set(0.8);
-  vtkSMPVRepresentationProxy::SetScalarColoring(surfaceShown, "Normals", vtkDataObject::POINT);
+  pqPiCompat::SetScalarColoring(surfaceShown, "Normals", vtkDataObject::POINT);
   surfaceShown->UpdateVTKObjects();
   controller->Hide(vtkSMSourceProxy::SafeDownCast(surface->getProxy()), 0, viewProxy);
   CHECK(show(surface, 0) == surfaceShown && Opacity(surfaceShown) == 0.8 &&

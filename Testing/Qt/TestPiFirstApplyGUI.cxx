@@ -19,13 +19,13 @@
 #include "pqPropertiesPanel.h"
 #include "pqPropertyWidget.h"
 #include "pqStandardPropertyWidgetInterface.h"
+#include "pqPiParaViewCompat.h"
 #include "vtkCamera.h"
 #include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionManager.h"
@@ -70,7 +70,7 @@ std::string ColorArray(vtkSMProxy* representation)
 {
   const char* name =
     vtkSMPropertyHelper(representation, "ColorArrayName").GetInputArrayNameToProcess();
-  return vtkSMPVRepresentationProxy::GetUsingScalarColoring(representation) && name ? name : "";
+  return pqPiCompat::GetUsingScalarColoring(representation) && name ? name : "";
 }
 
 // The representation of `source`'s `port` in `view` when it is visible, else null.
