@@ -13,6 +13,7 @@ bounds, enumeration entries). Restructuring the XML must not change one line; a 
 of the public interface records the listing again with --record and says so.
 """
 import difflib
+import ctypes
 import os
 import sys
 import tempfile
@@ -28,15 +29,20 @@ def text(value):
     return " ".join((value or "").split())
 
 
+LIBC = ctypes.CDLL(None)
+
+
 def parsed(element):
     """A vtkPVXMLElement as an ElementTree element (vtkPVXMLElement does not list its
-    attributes to Python: its PrintXML() writes to the C++ standard output)."""
+    attributes to Python: its PrintXML() writes to the C++ standard output, whose
+    buffer C's fflush empties; ParaView 5.13 leaves it unflushed)."""
     sys.stdout.flush()
     saved = os.dup(1)
     with tempfile.TemporaryFile() as out:
         os.dup2(out.fileno(), 1)
         try:
             element.PrintXML()
+            LIBC.fflush(None)
         finally:
             os.dup2(saved, 1)
             os.close(saved)
