@@ -63,15 +63,11 @@ bool Field::ProbeVertex(const double p[3], double probe, double tolerance, doubl
   double& gradientNorm, int& nearest) const
 {
   this->EvaluateVertex(p, normal, gradientNorm, nearest);
-  double logProbe = -HUGE_VAL;
-  for (int k = 0; k < 6; ++k)
-  {
-    double q[3] = { p[0], p[1], p[2] };
-    q[k / 2] += (k % 2 ? probe : -probe);
+  const double logProbe = LargestLogAtProbes(p, probe, [this](const double* q) {
     double logAbs;
     this->EvaluateSignAndLog(q, logAbs);
-    logProbe = std::max(logProbe, logAbs);
-  }
+    return logAbs;
+  });
   return std::log(gradientNorm) + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 }

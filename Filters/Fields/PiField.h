@@ -28,6 +28,7 @@
 
 #include "PiRayRoots.h"
 
+#include <cmath>
 #include <vector>
 
 namespace pisurf
@@ -155,6 +156,23 @@ public:
     double /*vb*/, int /*from*/, double /*tolerance*/, EdgeVertex& /*vertex*/) const
   {
     return false;
+  }
+
+protected:
+  /// The largest of logAt(q) at the six probe points q = p ± probe·e_i (in the order
+  /// −x, +x, −y, +y, −z, +z): ProbeVertex's right-hand side, for a field's own ln|F|.
+  template <class LogAt>
+  static double LargestLogAtProbes(const double p[3], double probe, LogAt&& logAt)
+  {
+    double largest = -HUGE_VAL;
+    for (int k = 0; k < 6; ++k)
+    {
+      double q[3] = { p[0], p[1], p[2] };
+      q[k / 2] += (k % 2 ? probe : -probe);
+      const double value = logAt(q);
+      largest = value > largest ? value : largest;
+    }
+    return largest;
   }
 };
 }

@@ -205,15 +205,11 @@ bool MoleculeField::ProbeVertex(const double p[3], double probe, double toleranc
   // ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
   double logGradient;
   this->EvaluateVertex(p, normal, gradientNorm, nearest, logGradient);
-  double logProbe = -HUGE_VAL;
-  for (int k = 0; k < 6; ++k)
-  {
-    double q[3] = { p[0], p[1], p[2] };
-    q[k / 2] += (k % 2 ? probe : -probe);
+  const double logProbe = LargestLogAtProbes(p, probe, [this](const double* q) {
     double logAbs;
     this->EvaluateWithLog(q, logAbs);
-    logProbe = std::max(logProbe, logAbs);
-  }
+    return logAbs;
+  });
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 

@@ -264,6 +264,24 @@ TEST_P(FieldConformance, BoxAnswersEqualPointAnswers)
       }
 }
 
+// Dense sampling of `box` (9³ points) agrees with `sign`.
+::testing::AssertionResult SignHoldsOn(const FieldCase& c, const double box[6], int sign)
+{
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j)
+      for (int k = 0; k <= 8; ++k)
+      {
+        const double p[3] = { box[0] + (box[1] - box[0]) * i / 8.0,
+          box[2] + (box[3] - box[2]) * j / 8.0, box[4] + (box[5] - box[4]) * k / 8.0 };
+        if (Sign(c.Field->Evaluate(p)) != sign)
+        {
+          return ::testing::AssertionFailure()
+            << "F = " << c.Field->Evaluate(p) << " where the sign " << sign << " was claimed";
+        }
+      }
+  return ::testing::AssertionSuccess();
+}
+
 TEST_P(FieldConformance, ClassifyBoxIsNeverWrong)
 {
   const FieldCase& c = this->Field();
@@ -281,16 +299,7 @@ TEST_P(FieldConformance, ClassifyBoxIsNeverWrong)
       continue;
     }
     ++decided;
-    for (int i = 0; i <= 8; ++i)
-      for (int j = 0; j <= 8; ++j)
-        for (int k = 0; k <= 8; ++k)
-        {
-          const double p[3] = { box[0] + (box[1] - box[0]) * i / 8.0,
-            box[2] + (box[3] - box[2]) * j / 8.0, box[4] + (box[5] - box[4]) * k / 8.0 };
-          ASSERT_EQ(Sign(c.Field->Evaluate(p)), sign)
-            << c.Name << ": box " << n << " classified " << sign << " holds F = "
-            << c.Field->Evaluate(p);
-        }
+    ASSERT_TRUE(SignHoldsOn(c, box, sign)) << c.Name << ": box " << n << " classified " << sign;
   }
   EXPECT_GT(decided, 30) << c.Name << ": ClassifyBox decides some boxes";
 }
@@ -417,24 +426,6 @@ TEST_P(FieldConformance, RootsBracketASignChange)
   }
   // Fields that answer neither keep the defaults, which say false: nothing to check.
   SUCCEED() << refined << " edges refined, " << first << " first roots";
-}
-
-// Dense sampling of `box` (9³ points) agrees with `sign`.
-::testing::AssertionResult SignHoldsOn(const FieldCase& c, const double box[6], int sign)
-{
-  for (int i = 0; i <= 8; ++i)
-    for (int j = 0; j <= 8; ++j)
-      for (int k = 0; k <= 8; ++k)
-      {
-        const double p[3] = { box[0] + (box[1] - box[0]) * i / 8.0,
-          box[2] + (box[3] - box[2]) * j / 8.0, box[4] + (box[5] - box[4]) * k / 8.0 };
-        if (Sign(c.Field->Evaluate(p)) != sign)
-        {
-          return ::testing::AssertionFailure()
-            << "F = " << c.Field->Evaluate(p) << " where the sign " << sign << " was claimed";
-        }
-      }
-  return ::testing::AssertionSuccess();
 }
 
 TEST_P(FieldConformance, OctantClassificationIsNeverWrong)
