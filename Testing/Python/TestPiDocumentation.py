@@ -31,7 +31,6 @@ import subprocess
 import sys
 import tempfile
 import traceback
-import xml.etree.ElementTree as ET
 
 from pitesting import check, finish
 
@@ -48,17 +47,13 @@ RUNNABLE = REQUIRED + sorted(set(glob.glob(os.path.join(SOURCE, "Documentation",
 # --- 1. Every proxy and property in the user guide -------------------------------------
 
 def load_proxies():
-    """(group, name) -> proxy element, over every XML file under Plugin/."""
-    proxies = {}
-    files = sorted(glob.glob(os.path.join(SOURCE, "Plugin", "**", "*.xml"), recursive=True))
-    check(files, "no XML file under %s/Plugin" % SOURCE)
-    for path in files:
-        for group in ET.parse(path).getroot().iter("ProxyGroup"):
-            for proxy in group:
-                if proxy.get("name") is None or (proxy.get("group") and len(proxy) == 0):
-                    continue
-                proxies[(group.get("name"), proxy.get("name"))] = proxy
-    return proxies
+    """(group, name) -> proxy element, over every XML file under Plugin/ (the loader of
+    Scripts/user_guide_tables.py, which prints the guide's tables)."""
+    check(glob.glob(os.path.join(SOURCE, "Plugin", "**", "*.xml"), recursive=True),
+          "no XML file under %s/Plugin" % SOURCE)
+    sys.path.insert(0, os.path.join(SOURCE, "Scripts"))
+    import user_guide_tables
+    return user_guide_tables.load(SOURCE)
 
 
 def property_names(proxies, key):
