@@ -51,7 +51,8 @@ public:
 private:
   double Bend(Id p, Id q) const
   {
-    return pisurf::Bend(this->X + 3 * p, this->Normal + 3 * p, this->X + 3 * q, this->Normal + 3 * q);
+    return pisurf::Bend(
+      this->X + 3 * p, this->Normal + 3 * p, this->X + 3 * q, this->Normal + 3 * q);
   }
   // (b − a)×(c − a)
   void Cross(Id a, Id b, Id c, double out[3]) const
@@ -191,10 +192,12 @@ private:
   // No triangle flipped (RecH, RecO all −1), in parallel.
   void ClearRecords()
   {
-    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-      std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
-      std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
-    });
+    vtkSMPTools::For(0, this->T,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        std::fill(&this->RecH[b], &this->RecH[b] + (e - b), Id(-1));
+        std::fill(&this->RecO[b], &this->RecO[b] + (e - b), Id(-1));
+      });
   }
 
   // Where half-edge q of a flipped triangle is after the round's flips (q is not the
@@ -231,22 +234,26 @@ vtkIdType FlipMesh<Id, Conn>::Build()
   constexpr Id BlockSize = 4096; // triangles
   const Id blocks = (this->T + BlockSize - 1) / BlockSize;
   std::vector<Id> blockLow(blocks), blockHigh(blocks);
-  vtkSMPTools::For(0, blocks, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  vtkSMPTools::For(0, blocks,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const Id h0 = static_cast<Id>(std::int64_t(3) * BlockSize * k);
-      const Id h1 = static_cast<Id>(std::min<std::int64_t>(h3, std::int64_t(3) * BlockSize * (k + 1)));
-      Id low = std::numeric_limits<Id>::max(), high = std::numeric_limits<Id>::min();
-      for (Id h = h0; h < h1; ++h)
+      for (vtkIdType k = b; k < e; ++k)
       {
-        low = std::min(low, static_cast<Id>(this->C[h]));
-        high = std::max(high, static_cast<Id>(this->C[h]));
+        const Id h0 = static_cast<Id>(std::int64_t(3) * BlockSize * k);
+        const Id h1 =
+          static_cast<Id>(std::min<std::int64_t>(h3, std::int64_t(3) * BlockSize * (k + 1)));
+        Id low = std::numeric_limits<Id>::max(), high = std::numeric_limits<Id>::min();
+        for (Id h = h0; h < h1; ++h)
+        {
+          low = std::min(low, static_cast<Id>(this->C[h]));
+          high = std::max(high, static_cast<Id>(this->C[h]));
+        }
+        blockLow[k] = low;
+        blockHigh[k] = high;
       }
-      blockLow[k] = low;
-      blockHigh[k] = high;
-    }
-  });
-  auto forEachOfPart = [&](Id part, auto&& visit) {
+    });
+  auto forEachOfPart = [&](Id part, auto&& visit)
+  {
     const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
     const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
     for (Id block = 0; block < blocks; ++block)
@@ -273,80 +280,87 @@ vtkIdType FlipMesh<Id, Conn>::Build()
     }
   };
   std::vector<Id> start(n + 1, 0);
-  ParallelFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType part = b; part < e; ++part)
+  ParallelFor(0, parts, 1,
+    [&](vtkIdType b, vtkIdType e)
     {
-      forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id) { ++start[low + 1]; });
-    }
-  });
+      for (vtkIdType part = b; part < e; ++part)
+      {
+        forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id) { ++start[low + 1]; });
+      }
+    });
   for (Id k = 0; k < n; ++k)
   {
     start[k + 1] += start[k];
   }
   // (not initialized on allocation: the fill below writes every one)
   std::unique_ptr<Id[]> entries(new Id[h3]);
-  ParallelFor(0, parts, 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType part = b; part < e; ++part)
+  ParallelFor(0, parts, 1,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
-      const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
-      std::vector<Id> fill(start.begin() + lo, start.begin() + hi);
-      forEachOfPart(static_cast<Id>(part), [&](Id low, Id, Id h) { entries[fill[low - lo]++] = h; });
-    }
-  });
+      for (vtkIdType part = b; part < e; ++part)
+      {
+        const Id lo = static_cast<Id>(std::int64_t(n) * part / parts);
+        const Id hi = static_cast<Id>(std::int64_t(n) * (part + 1) / parts);
+        std::vector<Id> fill(start.begin() + lo, start.begin() + hi);
+        forEachOfPart(
+          static_cast<Id>(part), [&](Id low, Id, Id h) { entries[fill[low - lo]++] = h; });
+      }
+    });
   // Every half-edge is in one vertex's entries: its opposite (or −1) is written there.
   // The half-edges of a vertex that share their upper vertex are one edge: paired when
   // there are two of opposite orientation, a boundary edge when alone.
   this->Opp.Allocate(h3);
   std::atomic<vtkIdType> boundary{ 0 };
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    vtkIdType count = 0;
-    std::vector<Id> upper;
-    std::vector<unsigned char> grouped;
-    for (vtkIdType v = b; v < e; ++v)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const Id* half = entries.get() + start[v];
-      const Id k = start[v + 1] - start[v];
-      upper.resize(k);
-      grouped.assign(k, 0);
-      for (Id i = 0; i < k; ++i)
+      vtkIdType count = 0;
+      std::vector<Id> upper;
+      std::vector<unsigned char> grouped;
+      for (vtkIdType v = b; v < e; ++v)
       {
-        upper[i] = std::max(this->From(half[i]), this->To(half[i]));
-        this->Opp[half[i]] = -1;
-      }
-      for (Id i = 0; i < k; ++i)
-      {
-        if (grouped[i])
+        const Id* half = entries.get() + start[v];
+        const Id k = start[v + 1] - start[v];
+        upper.resize(k);
+        grouped.assign(k, 0);
+        for (Id i = 0; i < k; ++i)
         {
-          continue;
+          upper[i] = std::max(this->From(half[i]), this->To(half[i]));
+          this->Opp[half[i]] = -1;
         }
-        Id size = 1, other = -1;
-        for (Id j = i + 1; j < k; ++j)
+        for (Id i = 0; i < k; ++i)
         {
-          if (upper[j] == upper[i])
+          if (grouped[i])
           {
-            grouped[j] = 1;
-            other = j;
-            ++size;
+            continue;
+          }
+          Id size = 1, other = -1;
+          for (Id j = i + 1; j < k; ++j)
+          {
+            if (upper[j] == upper[i])
+            {
+              grouped[j] = 1;
+              other = j;
+              ++size;
+            }
+          }
+          if (size == 1)
+          {
+            ++count;
+          }
+          else if (size == 2)
+          {
+            const Id h1 = half[i], h2 = half[other];
+            if (this->From(h1) == this->To(h2) && this->To(h1) == this->From(h2))
+            {
+              this->Opp[h1] = h2;
+              this->Opp[h2] = h1;
+            }
           }
         }
-        if (size == 1)
-        {
-          ++count;
-        }
-        else if (size == 2)
-        {
-          const Id h1 = half[i], h2 = half[other];
-          if (this->From(h1) == this->To(h2) && this->To(h1) == this->From(h2))
-          {
-            this->Opp[h1] = h2;
-            this->Opp[h2] = h1;
-          }
-        }
       }
-    }
-    boundary += count;
-  });
+      boundary += count;
+    });
   return boundary;
 }
 
@@ -365,65 +379,71 @@ vtkIdType FlipMesh<Id, Conn>::Round()
     this->RecH.Allocate(this->T);
     this->RecO.Allocate(this->T);
     this->ClearRecords();
-    vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
-      for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
+    vtkSMPTools::For(0, h3,
+      [&](vtkIdType b, vtkIdType e)
       {
-        const Id o = this->Opp[h];
-        if (o < 0)
-        {
-          this->Gains[h] = 0;
-        }
-        else if (h < o)
-        {
-          this->Gains[h] = this->Gains[o] = this->Gain(h, o);
-        }
-      }
-    });
-  }
-  else
-  {
-    vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-      for (Id t = static_cast<Id>(b); t < static_cast<Id>(e); ++t)
-      {
-        if (this->RecH[t] < 0)
-        {
-          continue;
-        }
-        for (Id h = 3 * t; h < 3 * t + 3; ++h)
+        for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
         {
           const Id o = this->Opp[h];
           if (o < 0)
           {
             this->Gains[h] = 0;
           }
-          else if (h < o || this->RecH[o / 3] < 0)
+          else if (h < o)
           {
             this->Gains[h] = this->Gains[o] = this->Gain(h, o);
           }
         }
-      }
-    });
+      });
+  }
+  else
+  {
+    vtkSMPTools::For(0, this->T,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (Id t = static_cast<Id>(b); t < static_cast<Id>(e); ++t)
+        {
+          if (this->RecH[t] < 0)
+          {
+            continue;
+          }
+          for (Id h = 3 * t; h < 3 * t + 3; ++h)
+          {
+            const Id o = this->Opp[h];
+            if (o < 0)
+            {
+              this->Gains[h] = 0;
+            }
+            else if (h < o || this->RecH[o / 3] < 0)
+            {
+              this->Gains[h] = this->Gains[o] = this->Gain(h, o);
+            }
+          }
+        }
+      });
     this->ClearRecords();
   }
   lap("gains");
   // The flips: edges that are the best of both their triangles (so each triangle is in
   // one flip at most) and keep the mesh manifold, checked on the mesh before the round.
   std::atomic<vtkIdType> flips{ 0 };
-  vtkSMPTools::For(0, h3, [&](vtkIdType b, vtkIdType e) {
-    vtkIdType count = 0;
-    for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
+  vtkSMPTools::For(0, h3,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const Id o = this->Opp[h];
-      if (o > h && this->Gains[h] > 0 && this->IsBest(h, h) && this->IsBest(o, h) &&
-        this->KeepsManifold(h, o))
+      vtkIdType count = 0;
+      for (Id h = static_cast<Id>(b); h < static_cast<Id>(e); ++h)
       {
-        this->RecH[h / 3] = this->RecH[o / 3] = h;
-        this->RecO[h / 3] = this->RecO[o / 3] = o;
-        ++count;
+        const Id o = this->Opp[h];
+        if (o > h && this->Gains[h] > 0 && this->IsBest(h, h) && this->IsBest(o, h) &&
+          this->KeepsManifold(h, o))
+        {
+          this->RecH[h / 3] = this->RecH[o / 3] = h;
+          this->RecO[h / 3] = this->RecO[o / 3] = o;
+          ++count;
+        }
       }
-    }
-    flips += count;
-  });
+      flips += count;
+    });
   lap("chosen");
   if (flips == 0)
   {
@@ -432,55 +452,58 @@ vtkIdType FlipMesh<Id, Conn>::Round()
   // (x, y, c) and (y, x, d) become (x, d, c) and (d, y, c); the outer half-edges move to
   // their new slots and their partners follow (written here when the partner's
   // triangle is not flipped itself, else by its own flip).
-  vtkSMPTools::For(0, this->T, [&](vtkIdType b, vtkIdType e) {
-    for (Id t1 = static_cast<Id>(b); t1 < static_cast<Id>(e); ++t1)
+  vtkSMPTools::For(0, this->T,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const Id H = this->RecH[t1], O = this->RecO[t1];
-      if (H < 0 || H / 3 != t1)
+      for (Id t1 = static_cast<Id>(b); t1 < static_cast<Id>(e); ++t1)
       {
-        continue;
-      }
-      const Id t2 = O / 3;
-      const Id x = this->From(H), y = this->To(H), c = this->From(Prev(H)), d = this->From(Prev(O));
-      const Id outer[4] = { Next(H), Prev(H), Next(O), Prev(O) };
-      const Id slot[4] = { 3 * t2 + 1, 3 * t1 + 2, 3 * t1, 3 * t2 };
-      Id partner[4];
-      for (int k = 0; k < 4; ++k)
-      {
-        partner[k] = this->Opp[outer[k]];
-      }
-      this->C[3 * t1] = x;
-      this->C[3 * t1 + 1] = d;
-      this->C[3 * t1 + 2] = c;
-      this->C[3 * t2] = d;
-      this->C[3 * t2 + 1] = y;
-      this->C[3 * t2 + 2] = c;
-      for (int k = 0; k < 4; ++k)
-      {
-        const Id p = partner[k];
-        if (p < 0)
+        const Id H = this->RecH[t1], O = this->RecO[t1];
+        if (H < 0 || H / 3 != t1)
         {
-          this->Opp[slot[k]] = -1;
           continue;
         }
-        const bool partnerFlipped = this->RecH[p / 3] >= 0;
-        this->Opp[slot[k]] = partnerFlipped ? this->Moved(p) : p;
-        if (!partnerFlipped)
+        const Id t2 = O / 3;
+        const Id x = this->From(H), y = this->To(H), c = this->From(Prev(H)),
+                 d = this->From(Prev(O));
+        const Id outer[4] = { Next(H), Prev(H), Next(O), Prev(O) };
+        const Id slot[4] = { 3 * t2 + 1, 3 * t1 + 2, 3 * t1, 3 * t2 };
+        Id partner[4];
+        for (int k = 0; k < 4; ++k)
         {
-          this->Opp[p] = slot[k];
+          partner[k] = this->Opp[outer[k]];
         }
+        this->C[3 * t1] = x;
+        this->C[3 * t1 + 1] = d;
+        this->C[3 * t1 + 2] = c;
+        this->C[3 * t2] = d;
+        this->C[3 * t2 + 1] = y;
+        this->C[3 * t2 + 2] = c;
+        for (int k = 0; k < 4; ++k)
+        {
+          const Id p = partner[k];
+          if (p < 0)
+          {
+            this->Opp[slot[k]] = -1;
+            continue;
+          }
+          const bool partnerFlipped = this->RecH[p / 3] >= 0;
+          this->Opp[slot[k]] = partnerFlipped ? this->Moved(p) : p;
+          if (!partnerFlipped)
+          {
+            this->Opp[p] = slot[k];
+          }
+        }
+        this->Opp[3 * t1 + 1] = 3 * t2 + 2;
+        this->Opp[3 * t2 + 2] = 3 * t1 + 1;
       }
-      this->Opp[3 * t1 + 1] = 3 * t2 + 2;
-      this->Opp[3 * t2 + 2] = 3 * t1 + 1;
-    }
-  });
+    });
   lap("applied");
   return flips;
 }
 
 template <typename Id, typename Conn>
-EdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points,
-  const double* xyz, const float* normals, int rounds)
+EdgeFlipResult Run(Conn* connectivity, vtkIdType triangles, vtkIdType points, const double* xyz,
+  const float* normals, int rounds)
 {
   EdgeFlipResult result;
   FlipMesh<Id, Conn> mesh(connectivity, triangles, points, xyz, normals);
@@ -508,8 +531,8 @@ bool FitsInt32Cells(vtkIdType triangles, vtkIdType points)
     points < std::numeric_limits<std::int32_t>::max();
 }
 
-EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
-  vtkIdType points, const double* xyz, const float* normals, int rounds)
+EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles, vtkIdType points,
+  const double* xyz, const float* normals, int rounds)
 {
   // 32-bit half-edge ids when they fit: half the memory traffic.
   if (FitsInt32Cells(triangles, points))

@@ -57,8 +57,8 @@ struct EdgeFlipResult
 /// points), then makes up to `rounds` rounds of flips, rewriting `connectivity` in
 /// place. `xyz`: the points (3 doubles each); `normals`: unit normals (3 floats each).
 /// Threaded with vtkSMPTools; the result does not depend on the number of threads.
-EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles,
-  vtkIdType points, const double* xyz, const float* normals, int rounds);
+EdgeFlipResult FlipEdgesToCurvature(vtkIdType* connectivity, vtkIdType triangles, vtkIdType points,
+  const double* xyz, const float* normals, int rounds);
 /// True when `triangles` triangles on `points` points fit vtkCellArray's 32-bit
 /// storage (every id and the connectivity's length below 2^31 − 1): the filters then
 /// store their cells in it, for half the memory.

@@ -116,8 +116,8 @@ struct MoleculeInput
     double v[9];
     for (int k = 0; k < 9; ++k)
     {
-      v[k] = settings->GetComponent(k / settings->GetNumberOfComponents(),
-        k % settings->GetNumberOfComponents());
+      v[k] = settings->GetComponent(
+        k / settings->GetNumberOfComponents(), k % settings->GetNumberOfComponents());
     }
     std::copy(v + 3, v + 9, this->Bounds);
     if ((v[0] != 0 && v[0] != 1) || !(v[1] >= 0 && std::isfinite(v[1])) ||

@@ -31,8 +31,8 @@ void AllocateLargeArray(ArrayT* array, vtkIdType tuples)
 {
   using Value = typename ArrayT::ValueType;
   const vtkIdType values = tuples * array->GetNumberOfComponents();
-  void* data = values > 0 ? pisurf::AllocateLarge(sizeof(Value) * static_cast<size_t>(values))
-                          : nullptr;
+  void* data =
+    values > 0 ? pisurf::AllocateLarge(sizeof(Value) * static_cast<size_t>(values)) : nullptr;
   if (!data)
   {
     array->SetNumberOfTuples(tuples);

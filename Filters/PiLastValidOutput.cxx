@@ -11,8 +11,8 @@
 namespace pisurf
 {
 
-int LastValidOutput::Process(vtkInformation* request, bool keep,
-  vtkInformationVector* outputs, const std::function<int()>& process)
+int LastValidOutput::Process(vtkInformation* request, bool keep, vtkInformationVector* outputs,
+  const std::function<int()>& process)
 {
   if (!request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
@@ -47,8 +47,8 @@ int LastValidOutput::Process(vtkInformation* request, bool keep,
     return result;
   }
   // The error is reported; the outputs are the last valid ones (or empty).
-  const bool same = piece == this->Piece && pieces == this->Pieces &&
-    static_cast<int>(this->Outputs.size()) == n;
+  const bool same =
+    piece == this->Piece && pieces == this->Pieces && static_cast<int>(this->Outputs.size()) == n;
   for (int port = 0; port < n; ++port)
   {
     vtkDataObject* output = vtkDataObject::GetData(outputs, port);

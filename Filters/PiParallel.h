@@ -61,14 +61,16 @@ void ParallelFor(vtkIdType first, vtkIdType last, vtkIdType grain, Functor&& f)
     return;
   }
   std::atomic<vtkIdType> next{ 0 };
-  vtkSMPTools::For(0, std::min<vtkIdType>(threads, chunks), 1, [&](vtkIdType, vtkIdType) {
-    for (vtkIdType c = next.fetch_add(1, std::memory_order_relaxed); c < chunks;
-         c = next.fetch_add(1, std::memory_order_relaxed))
+  vtkSMPTools::For(0, std::min<vtkIdType>(threads, chunks), 1,
+    [&](vtkIdType, vtkIdType)
     {
-      const vtkIdType begin = first + c * size;
-      f(begin, std::min(last, begin + size));
-    }
-  });
+      for (vtkIdType c = next.fetch_add(1, std::memory_order_relaxed); c < chunks;
+           c = next.fetch_add(1, std::memory_order_relaxed))
+      {
+        const vtkIdType begin = first + c * size;
+        f(begin, std::min(last, begin + size));
+      }
+    });
 }
 
 }

@@ -101,7 +101,6 @@ private:
   double LastCpu = 0;
   long LastFaults = 0;
 };
-
 }
 
 #endif

@@ -58,7 +58,6 @@ struct vtkPiFlyingEdges::vtkInternals
   vtkSmartPointer<vtkPolyData> Primitives;
 };
 
-
 void vtkPiFlyingEdges::SetField(std::shared_ptr<const pisurf::Field> field)
 {
   if (field != this->Internals->Field)
@@ -119,8 +118,8 @@ void vtkPiFlyingEdges::MarkPortsNotGenerated(vtkInformation* request, vtkInforma
     vtkDataObject* mesh = meshInfo->Get(vtkDataObject::DATA_OBJECT());
     const pisurf::Piece asked = pisurf::PieceOf(primitivesInfo);
     in.SkipMesh = executive && mesh && in.MeshDims[0] > 0 &&
-      mesh->GetUpdateTime() > executive->GetPipelineMTime() &&
-      in.MeshPiece.Piece == asked.Piece && in.MeshPiece.Pieces == asked.Pieces;
+      mesh->GetUpdateTime() > executive->GetPipelineMTime() && in.MeshPiece.Piece == asked.Piece &&
+      in.MeshPiece.Pieces == asked.Pieces;
   }
   if (in.SkipMesh)
   {
@@ -148,16 +147,13 @@ void vtkPiFlyingEdges::ReportReferences(vtkGarbageCollector* collector)
   vtkGarbageCollectorReport(collector, this->PiSurface, "PiSurface");
 }
 
-
-
 int vtkPiFlyingEdges::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Pieces are slabs of blocks along z (see RequestData).
   for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
   {
-    outputVector->GetInformationObject(port)->Set(
-      vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+    outputVector->GetInformationObject(port)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
   }
   return 1;
 }
@@ -178,8 +174,8 @@ bool vtkPiFlyingEdges::ComputeGrid(
   {
     if (sd[0] < 2 || sd[1] < 2 || sd[2] < 2)
     {
-      vtkErrorMacro(<< "SampleDimensions must be at least 2 points per axis (got " << sd[0]
-                    << ", " << sd[1] << ", " << sd[2] << "); set all to 0 to use Resolution");
+      vtkErrorMacro(<< "SampleDimensions must be at least 2 points per axis (got " << sd[0] << ", "
+                    << sd[1] << ", " << sd[2] << "); set all to 0 to use Resolution");
       return false;
     }
     std::copy(sd, sd + 3, points);
@@ -201,9 +197,9 @@ bool vtkPiFlyingEdges::ComputeGrid(
   if (!(samples <= static_cast<double>(this->MaximumNumberOfSamples)) ||
     std::max({ points[0], points[1], points[2] }) > VTK_INT_MAX)
   {
-    vtkErrorMacro(<< "A grid of " << points[0] << " x " << points[1] << " x " << points[2]
-                  << " = " << samples << " samples needs up to "
-                  << samples * sizeof(double) / (1 << 20) << " MiB; the limit is "
+    vtkErrorMacro(<< "A grid of " << points[0] << " x " << points[1] << " x " << points[2] << " = "
+                  << samples << " samples needs up to " << samples * sizeof(double) / (1 << 20)
+                  << " MiB; the limit is "
                   << this->MaximumNumberOfSamples * sizeof(double) / (1 << 20)
                   << " MiB (MaximumNumberOfSamples = " << this->MaximumNumberOfSamples
                   << " samples)");
@@ -376,8 +372,8 @@ int vtkPiFlyingEdges::ChooseResolution(const double bounds[6])
   {
     int dims[3];
     double spacing[3];
-    const double side = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2],
-      bounds[5] - bounds[4] });
+    const double side =
+      std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
     double samples = 1.0;
     for (int a = 0; a < 3; ++a)
     {
@@ -448,8 +444,8 @@ void vtkPiFlyingEdges::OutputPrimitives(vtkInformationVector* outputVector)
     model.Blending = 0.0;
     model.HasBounds = false;
     key.precision(17);
-    key << pisurf::WriteModel(model) << "|" << this->ProjectVertices << "|"
-        << in.MeshPiece.Piece << "/" << in.MeshPiece.Pieces;
+    key << pisurf::WriteModel(model) << "|" << this->ProjectVertices << "|" << in.MeshPiece.Piece
+        << "/" << in.MeshPiece.Pieces;
     for (int a = 0; a < 6; ++a)
     {
       key << "|" << in.MeshBounds[a];

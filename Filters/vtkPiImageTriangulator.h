@@ -49,8 +49,9 @@
  * storage when the point and connectivity counts fit (else 64-bit); point data `Normals`
  * (the exact unit gradient), `Singular`,
  * `ViewIndex` (the view whose ray holds the vertex), `Factor`; field data
- * `PiSurfaceModel` or the molecule's arrays (passed on), `BoundaryEdges` (edges used by one triangle: 0 for a
- * closed mesh), `UnusedHits` (hits that are not vertices), both of the whole mesh.
+ * `PiSurfaceModel` or the molecule's arrays (passed on), `BoundaryEdges` (edges used by one
+ * triangle: 0 for a closed mesh), `UnusedHits` (hits that are not vertices), both of the whole
+ * mesh.
  *
  * Pieces (ParaView's MPI mode): the views are merged and their seams closed across the
  * whole lattice, so every piece asks for the whole cloud (piece 0 of 1 of the input),

@@ -107,8 +107,8 @@ int vtkPiMoleculeSurface::RequestData(
 
   // PASS 4: the mesh (piece p of n: the mesher's slab p of the grid; the union of the
   // pieces is the one-piece mesh).
-  switch (molecule::Mesh(this, grid, this->OuterEnvelope, this->ProjectVertices,
-    request.Piece, request.Pieces, output))
+  switch (molecule::Mesh(
+    this, grid, this->OuterEnvelope, this->ProjectVertices, request.Piece, request.Pieces, output))
   {
     case molecule::MeshResult::Failed:
       return 0;

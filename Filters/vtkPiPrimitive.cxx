@@ -430,11 +430,11 @@ void vtkPiPrimitive::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RotationAxis: (" << this->RotationAxis[0] << ", " << this->RotationAxis[1]
      << ", " << this->RotationAxis[2] << ")\n";
   os << indent << "RotationAngle: " << this->RotationAngle << "\n";
-  os << indent << "Orientation: (" << this->Orientation[0] << ", " << this->Orientation[1]
-     << ", " << this->Orientation[2] << ")\n";
+  os << indent << "Orientation: (" << this->Orientation[0] << ", " << this->Orientation[1] << ", "
+     << this->Orientation[2] << ")\n";
   os << indent << "Radius: " << this->Radius << "\n";
-  os << indent << "Radii: (" << this->Radii[0] << ", " << this->Radii[1] << ", "
-     << this->Radii[2] << ")\n";
+  os << indent << "Radii: (" << this->Radii[0] << ", " << this->Radii[1] << ", " << this->Radii[2]
+     << ")\n";
   os << indent << "MajorRadius: " << this->MajorRadius << "\n";
   os << indent << "MinorRadius: " << this->MinorRadius << "\n";
   os << indent << "Exponent: " << this->Exponent << "\n";

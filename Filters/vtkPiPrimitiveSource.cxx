@@ -13,8 +13,8 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkInformation.h"
-#include "vtkNew.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -244,8 +244,7 @@ bool vtkPiPrimitiveSource::ResolveBounds(double bounds[6], std::string& error)
   for (const pisurf::ParameterInfo& parameter :
     pisurf::CatalogueEntry(static_cast<pisurf::PrimitiveType>(p->GetType())).Parameters)
   {
-    if (parameter.Kind == pisurf::ParameterKind::Number &&
-      std::string(parameter.Unit) == "length")
+    if (parameter.Kind == pisurf::ParameterKind::Number && std::string(parameter.Unit) == "length")
     {
       const double* v = parameter.Numbers(spec);
       for (int i = 0; i < parameter.Count; ++i)

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiRayCaster.h"
+#include "PiInputSurface.h"
 #include "PiLargeArrays.h"
 #include "PiParallel.h"
-#include "PiInputSurface.h"
 #include "PiPieces.h"
 #include "PiTiming.h"
 
@@ -23,16 +23,16 @@
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkExtentTranslator.h"
 #include "vtkGarbageCollector.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
-#include "vtkInformationIntegerRequestKey.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationIntegerRequestKey.h"
+#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -71,8 +71,8 @@ bool CheckSettings(const int resolution[2], double singularTolerance, std::strin
   std::ostringstream message;
   if (resolution[0] < 1 || resolution[1] < 1)
   {
-    message << "Resolution must be at least 1 x 1 (got " << resolution[0] << " x "
-            << resolution[1] << ")";
+    message << "Resolution must be at least 1 x 1 (got " << resolution[0] << " x " << resolution[1]
+            << ")";
   }
   else if (!(singularTolerance >= 0 && std::isfinite(singularTolerance)))
   {
@@ -103,7 +103,7 @@ int vtkPiRayCaster::RequestInformation(
   // The image: w × h pixels, one slice per view (the number of views is known here).
   const int views = this->ViewMode == SIX_AXIS_VIEWS ? 6
     : this->ViewMode == THREE_AXIS_DIRECTIONS        ? 3
-                                                      : 1;
+                                                     : 1;
   const int extent[6] = { 0, std::max(this->Resolution[0], 1) - 1, 0,
     std::max(this->Resolution[1], 1) - 1, 0, views - 1 };
   vtkInformation* info = outputVector->GetInformationObject(1);
@@ -182,8 +182,8 @@ int vtkPiRayCaster::RequestData(
   // The views.
   const int w = this->Resolution[0], h = this->Resolution[1];
   std::vector<RayView> views;
-  const pisurf::RayCamera camera{ this->CameraPosition, this->CameraFocalPoint,
-    this->CameraViewUp, this->ViewAngle, this->ParallelProjection, this->ParallelScale };
+  const pisurf::RayCamera camera{ this->CameraPosition, this->CameraFocalPoint, this->CameraViewUp,
+    this->ViewAngle, this->ParallelProjection, this->ParallelScale };
   if (!pisurf::RayViews::Make(this->ViewMode, w, h, b, camera, views, error) ||
     !pisurf::RayViews::CheckMemory(w, h, views.size(), error))
   {
@@ -191,8 +191,8 @@ int vtkPiRayCaster::RequestData(
     return 0;
   }
   const bool allHits = this->AllHits || this->ViewMode == THREE_AXIS_DIRECTIONS;
-  const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
+  const double size = std::sqrt(
+    (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
 
   const pisurf::RayPieceRows pieceRows = pisurf::RayPieceRows::Of(outputVector, image, h);
   const int rowBegin = pieceRows.RowBegin, rowEnd = pieceRows.RowEnd;
@@ -239,8 +239,8 @@ int vtkPiRayCaster::RequestData(
     pisurf::RaySkipping::PrintCounts(skipping, std::cerr);
   }
   std::atomic<vtkIdType> finished{ 0 };
-  pisurf::RayRowCaster cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids,
-    &skipping, this, &abort, rowBegin, rowEnd, &finished, rowCount };
+  pisurf::RayRowCaster cast{ &views, b, allHits, 1e-10 * size, &rows, &caster, &grids, &skipping,
+    this, &abort, rowBegin, rowEnd, &finished, rowCount };
   lap("setup");
   cast.Run();
   lap("roots");
@@ -301,8 +301,8 @@ void vtkPiRayCaster::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
      << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
      << this->Bounds[5] << ")\n";
-  os << indent << "CameraPosition: (" << this->CameraPosition[0] << ", "
-     << this->CameraPosition[1] << ", " << this->CameraPosition[2] << ")\n";
+  os << indent << "CameraPosition: (" << this->CameraPosition[0] << ", " << this->CameraPosition[1]
+     << ", " << this->CameraPosition[2] << ")\n";
   os << indent << "CameraFocalPoint: (" << this->CameraFocalPoint[0] << ", "
      << this->CameraFocalPoint[1] << ", " << this->CameraFocalPoint[2] << ")\n";
   os << indent << "CameraViewUp: (" << this->CameraViewUp[0] << ", " << this->CameraViewUp[1]

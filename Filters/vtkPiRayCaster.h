@@ -86,11 +86,11 @@
  * derivative likewise (a monotone piece holds one root at most), with the same
  * guarantees (every root to 1e-10 of the size, tangent roots flagged) at a cost per
  * ray that does not grow with the molecule (1ubq Global, six axis views of 64² on two
- * threads: 0.16 s; the product path took 7.7 s). Its `Factor` is the atom whose sphere is nearest the hit,
- * and `Singular` uses the field's far-field values, which lie within their bound of
- * the exact ones (a borderline hit may be classified differently). The molecule's
- * arrays pass to the output's field data. vtkPiImageTriangulator needs a
- * `PiSurfaceModel` (Global, up to 10 000 atoms).
+ * threads: 0.16 s; the product path took 7.7 s). Its `Factor` is the atom whose sphere is nearest
+ * the hit, and `Singular` uses the field's far-field values, which lie within their bound of the
+ * exact ones (a borderline hit may be classified differently). The molecule's arrays pass to the
+ * output's field data. vtkPiImageTriangulator needs a `PiSurfaceModel` (Global, up to 10 000
+ * atoms).
  *
  * Output port 1 (vtkImageData, w × h × number of views, one slice per view, unit
  * spacing): the paper's immediate visualization of the first hits, `Shading` (RGB: a
@@ -118,7 +118,6 @@
 
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-
 
 class vtkPiSurface;
 #ifndef __VTK_WRAP__

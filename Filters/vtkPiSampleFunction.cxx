@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSampleFunction.h"
+#include "PiInputSurface.h"
 #include "PiLargeArrays.h"
 #include "PiParallel.h"
-#include "PiInputSurface.h"
 #include "PiPieces.h"
 
 #include "PiProductKernel.h"
@@ -12,9 +12,9 @@
 #include "vtkFieldData.h"
 #include "vtkGarbageCollector.h"
 #include "vtkImageData.h"
-#include "vtkNew.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
@@ -166,42 +166,45 @@ int vtkPiSampleFunction::RequestData(
   const double mid = 0.5 * (d[0] - 1);
   std::atomic<bool> abort{ false };
   std::atomic<vtkIdType> done{ 0 };
-  pisurf::ParallelFor(0, rows, 16, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType r = begin; r < end && !abort; ++r)
+  pisurf::ParallelFor(0, rows, 16,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const int j = extent[2] + static_cast<int>(r % ny), k = extent[4] + static_cast<int>(r / ny);
-      if (!kernel)
+      for (vtkIdType r = begin; r < end && !abort; ++r)
       {
-        // The field point by point (a molecule's cells hold the atoms near each point),
-        // at the points the mesher would take: origin + index·spacing.
-        for (int i = 0; i < nx; ++i)
+        const int j = extent[2] + static_cast<int>(r % ny),
+                  k = extent[4] + static_cast<int>(r / ny);
+        if (!kernel)
         {
-          const double p[3] = { origin[0] + (extent[0] + i) * spacing[0],
-            origin[1] + j * spacing[1], origin[2] + k * spacing[2] };
-          out[r * nx + i] = field->Evaluate(p);
+          // The field point by point (a molecule's cells hold the atoms near each point),
+          // at the points the mesher would take: origin + index·spacing.
+          for (int i = 0; i < nx; ++i)
+          {
+            const double p[3] = { origin[0] + (extent[0] + i) * spacing[0],
+              origin[1] + j * spacing[1], origin[2] + k * spacing[2] };
+            out[r * nx + i] = field->Evaluate(p);
+          }
+          continue;
         }
-        continue;
+        thread_local std::vector<double> coefficients;
+        coefficients.resize(kernel->GetLineCoefficientCount());
+        const double middle[3] = { origin[0] + mid * spacing[0], origin[1] + j * spacing[1],
+          origin[2] + k * spacing[2] };
+        kernel->RestrictLine(middle, step, coefficients.data());
+        const double start[3] = { origin[0] + extent[0] * spacing[0], middle[1], middle[2] };
+        kernel->EvaluateRestrictedRow(
+          coefficients.data(), extent[0] - mid, nx, start, step, out + r * nx);
       }
-      thread_local std::vector<double> coefficients;
-      coefficients.resize(kernel->GetLineCoefficientCount());
-      const double middle[3] = { origin[0] + mid * spacing[0], origin[1] + j * spacing[1],
-        origin[2] + k * spacing[2] };
-      kernel->RestrictLine(middle, step, coefficients.data());
-      const double start[3] = { origin[0] + extent[0] * spacing[0], middle[1], middle[2] };
-      kernel->EvaluateRestrictedRow(
-        coefficients.data(), extent[0] - mid, nx, start, step, out + r * nx);
-    }
-    const vtkIdType finished = done += end - begin;
-    // Progress and abort from the thread that may call into the pipeline.
-    if (pisurf::SingleThread())
-    {
-      this->UpdateProgress(double(finished) / rows);
-      if (this->CheckAbort())
+      const vtkIdType finished = done += end - begin;
+      // Progress and abort from the thread that may call into the pipeline.
+      if (pisurf::SingleThread())
       {
-        abort = true;
+        this->UpdateProgress(double(finished) / rows);
+        if (this->CheckAbort())
+        {
+          abort = true;
+        }
       }
-    }
-  });
+    });
   output->GetPointData()->SetScalars(values);
   if (abort)
   {

@@ -2,8 +2,8 @@
 #include "vtkPiSurface.h"
 
 #include "PiModel.h"
-#include "PiProductKernel.h"
 #include "PiParallel.h"
+#include "PiProductKernel.h"
 #include "vtkPiPrimitive.h"
 
 #include "vtkCallbackCommand.h"
@@ -14,12 +14,12 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "vtksys/SystemTools.hxx"
 #include "vtkPlane.h"
 #include "vtkQuadric.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphere.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <atomic>
 #include <cmath>
@@ -192,7 +192,8 @@ vtkPiSurface::vtkPiSurface()
 {
   this->Internals->FactorObserver->SetClientData(this);
   this->Internals->FactorObserver->SetCallback(
-    [](vtkObject*, unsigned long, void* clientData, void*) {
+    [](vtkObject*, unsigned long, void* clientData, void*)
+    {
       auto* self = static_cast<vtkPiSurface*>(clientData);
       self->Internals->Dirty = true;
       self->Modified();
@@ -259,8 +260,8 @@ vtkImplicitFunction* vtkPiSurface::GetFactor(int i)
 {
   if (i < 0 || i >= this->GetNumberOfFactors())
   {
-    vtkErrorMacro(<< "GetFactor: index " << i << " out of range [0, "
-                  << this->GetNumberOfFactors() << ")");
+    vtkErrorMacro(<< "GetFactor: index " << i << " out of range [0, " << this->GetNumberOfFactors()
+                  << ")");
     return nullptr;
   }
   return this->Internals->Factors[i];
@@ -389,7 +390,8 @@ const pisurf::ProductKernel* vtkPiSurface::FastKernel()
           {
             vtkSmartPointer<vtkImplicitFunction> held = f;
             factor.IsPolynomial = false;
-            factor.Generic = [held](const double p[3], double* g) {
+            factor.Generic = [held](const double p[3], double* g)
+            {
               if (g)
               {
                 held->FunctionGradient(p, g);
@@ -462,18 +464,20 @@ void vtkPiSurface::EvaluateFunction(vtkDataArray* input, vtkDataArray* output)
     return;
   }
   // PASS 1: evaluate blocks of points, factor by factor.
-  pisurf::ParallelFor(0, n, 1024, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<double> xyz(3 * (end - begin)), values(end - begin);
-    for (vtkIdType i = begin; i < end; ++i)
+  pisurf::ParallelFor(0, n, 1024,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      input->GetTuple(i, &xyz[3 * (i - begin)]);
-    }
-    kernel->EvaluatePoints(xyz.data(), end - begin, values.data());
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      output->SetTuple1(i, values[i - begin]);
-    }
-  });
+      std::vector<double> xyz(3 * (end - begin)), values(end - begin);
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        input->GetTuple(i, &xyz[3 * (i - begin)]);
+      }
+      kernel->EvaluatePoints(xyz.data(), end - begin, values.data());
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        output->SetTuple1(i, values[i - begin]);
+      }
+    });
 }
 
 int vtkPiSurface::EvaluateSignAndLog(double x[3], double& logAbs)

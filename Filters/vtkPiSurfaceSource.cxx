@@ -2,11 +2,11 @@
 #include "vtkPiSurfaceSource.h"
 #include "PiInnerAlgorithm.h"
 #include "PiPieces.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkPiImageTriangulator.h"
 #include "vtkPiRayCaster.h"
 #include "vtkPolyData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "vtkPiSurface.h"
@@ -112,8 +112,8 @@ int vtkPiSurfaceSource::RayCastTriangulation(vtkInformationVector* outputVector)
   caster->SetPiSurface(this->PiSurface);
   caster->SetBounds(bounds);
   caster->SetResolution(n, n);
-  caster->SetViewMode(this->OuterEnvelope ? vtkPiRayCaster::SIX_AXIS_VIEWS
-                                          : vtkPiRayCaster::THREE_AXIS_DIRECTIONS);
+  caster->SetViewMode(
+    this->OuterEnvelope ? vtkPiRayCaster::SIX_AXIS_VIEWS : vtkPiRayCaster::THREE_AXIS_DIRECTIONS);
   vtkNew<vtkPiImageTriangulator> triangulator;
   triangulator->SetInputConnection(caster->GetOutputPort());
   triangulator->SetMergeMode(vtkPiImageTriangulator::RAY_LATTICE);

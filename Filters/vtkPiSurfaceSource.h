@@ -7,8 +7,8 @@
  * model (ParaView's "Pi Surface" source). OverrideBlending (default off) replaces the
  * model's r by Blending (default 0.25), for the paper's inflate/shrink experiments.
  * Everything else (Bounds, Resolution, OuterEnvelope, ProjectVertices, the primitives
- * on port 1, which are on by default here) is the mesher's. An invalid model is an error that names the key or the
- * position; the output is then empty.
+ * on port 1, which are on by default here) is the mesher's. An invalid model is an error that names
+ * the key or the position; the output is then empty.
  *
  * Method chooses how F = 0 becomes triangles: FLYING_EDGES (default, vtkPiFlyingEdges
  * with all its settings) or RAY_CAST_TRIANGULATION, the paper's image-based way:

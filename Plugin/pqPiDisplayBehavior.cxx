@@ -2,21 +2,21 @@
 #include "pqPiDisplayBehavior.h"
 
 #include "pqApplicationCore.h"
+#include "pqPiParaViewCompat.h"
 #include "pqPipelineSource.h"
 #include "pqRepresentation.h"
 #include "pqServerManagerModel.h"
 #include "pqUndoStack.h"
-#include "pqPiParaViewCompat.h"
 #include "vtkDataObject.h"
 #include "vtkMath.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiSurface.h"
-#include "vtkSMTransferFunctionManager.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMTransferFunctionManager.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,9 +55,9 @@ bool IsMoleculeProducer(vtkSMProxy* producer)
 }
 
 // The primitives' colours, as in the paper's figures and the gallery.
-constexpr double Palette[8][3] = { { 0.85, 0.22, 0.18 }, { 0.22, 0.42, 0.85 },
-  { 0.25, 0.7, 0.3 }, { 0.95, 0.6, 0.15 }, { 0.6, 0.3, 0.75 }, { 0.15, 0.7, 0.7 },
-  { 0.9, 0.8, 0.2 }, { 0.8, 0.4, 0.6 } };
+constexpr double Palette[8][3] = { { 0.85, 0.22, 0.18 }, { 0.22, 0.42, 0.85 }, { 0.25, 0.7, 0.3 },
+  { 0.95, 0.6, 0.15 }, { 0.6, 0.3, 0.75 }, { 0.15, 0.7, 0.7 }, { 0.9, 0.8, 0.2 },
+  { 0.8, 0.4, 0.6 } };
 
 // Whether the Π-surface lies inside its primitives (a factor that is negative far away,
 // such as a negated sphere digging a dent) rather than around them: F is then negative
@@ -120,8 +120,8 @@ void MakeFactorCategorical(vtkSMProxy* representation, int count)
   {
     return;
   }
-  count = std::max(count,
-    static_cast<int>(vtkSMPropertyHelper(lut, "Annotations").GetNumberOfElements() / 2));
+  count = std::max(
+    count, static_cast<int>(vtkSMPropertyHelper(lut, "Annotations").GetNumberOfElements() / 2));
   std::vector<std::string> annotations;
   std::vector<double> colours;
   for (int i = 0; i < count; ++i)
@@ -137,7 +137,8 @@ void MakeFactorCategorical(vtkSMProxy* representation, int count)
   {
     annotationsHelper.Set(i, annotations[i].c_str());
   }
-  vtkSMPropertyHelper(lut, "IndexedColors").Set(colours.data(), static_cast<unsigned int>(colours.size()));
+  vtkSMPropertyHelper(lut, "IndexedColors")
+    .Set(colours.data(), static_cast<unsigned int>(colours.size()));
   lut->UpdateVTKObjects();
 }
 
@@ -150,14 +151,12 @@ struct Element
 
 // CPK colours (as Jmol draws them) of the elements of biomolecules and small molecules.
 constexpr Element Elements[] = { { 1, "H", { 1, 1, 1 } }, { 6, "C", { 0.56, 0.56, 0.56 } },
-  { 7, "N", { 0.19, 0.31, 0.97 } }, { 8, "O", { 1, 0.05, 0.05 } },
-  { 9, "F", { 0.56, 0.88, 0.31 } }, { 11, "Na", { 0.67, 0.36, 0.95 } },
-  { 12, "Mg", { 0.54, 1, 0 } }, { 15, "P", { 1, 0.5, 0 } }, { 16, "S", { 1, 1, 0.19 } },
-  { 17, "Cl", { 0.12, 0.94, 0.12 } }, { 19, "K", { 0.56, 0.25, 0.83 } },
-  { 20, "Ca", { 0.24, 1, 0 } }, { 26, "Fe", { 0.88, 0.4, 0.2 } },
-  { 29, "Cu", { 0.78, 0.5, 0.2 } }, { 30, "Zn", { 0.49, 0.5, 0.69 } },
-  { 34, "Se", { 1, 0.63, 0 } }, { 35, "Br", { 0.65, 0.16, 0.16 } },
-  { 53, "I", { 0.58, 0, 0.58 } } };
+  { 7, "N", { 0.19, 0.31, 0.97 } }, { 8, "O", { 1, 0.05, 0.05 } }, { 9, "F", { 0.56, 0.88, 0.31 } },
+  { 11, "Na", { 0.67, 0.36, 0.95 } }, { 12, "Mg", { 0.54, 1, 0 } }, { 15, "P", { 1, 0.5, 0 } },
+  { 16, "S", { 1, 1, 0.19 } }, { 17, "Cl", { 0.12, 0.94, 0.12 } },
+  { 19, "K", { 0.56, 0.25, 0.83 } }, { 20, "Ca", { 0.24, 1, 0 } }, { 26, "Fe", { 0.88, 0.4, 0.2 } },
+  { 29, "Cu", { 0.78, 0.5, 0.2 } }, { 30, "Zn", { 0.49, 0.5, 0.69 } }, { 34, "Se", { 1, 0.63, 0 } },
+  { 35, "Br", { 0.65, 0.16, 0.16 } }, { 53, "I", { 0.58, 0, 0.58 } } };
 
 // `AtomicNumber` as categories with the CPK colours, for whichever display colours by it.
 void MakeAtomicNumberCategorical(vtkSMSessionProxyManager* pxm)
@@ -179,7 +178,8 @@ void MakeAtomicNumberCategorical(vtkSMSessionProxyManager* pxm)
     annotations.Set(2 * i + 1, Elements[i].Symbol);
     colours.insert(colours.end(), Elements[i].Colour, Elements[i].Colour + 3);
   }
-  vtkSMPropertyHelper(lut, "IndexedColors").Set(colours.data(), static_cast<unsigned int>(colours.size()));
+  vtkSMPropertyHelper(lut, "IndexedColors")
+    .Set(colours.data(), static_cast<unsigned int>(colours.size()));
   vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
   lut->UpdateVTKObjects();
 }
@@ -217,9 +217,8 @@ void pqPiDisplayBehavior::startup()
     QObject::connect(core->getServerManagerModel(), &pqServerManagerModel::sourceAdded, this,
       &pqPiDisplayBehavior::onSourceNamed, Qt::UniqueConnection);
     QObject::connect(core->getServerManagerModel(), &pqServerManagerModel::nameChanged, this,
-      [this](pqServerManagerModelItem* item) {
-        this->onSourceNamed(qobject_cast<pqPipelineSource*>(item));
-      });
+      [this](pqServerManagerModelItem* item)
+      { this->onSourceNamed(qobject_cast<pqPipelineSource*>(item)); });
   }
 }
 

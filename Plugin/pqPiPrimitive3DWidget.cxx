@@ -103,7 +103,7 @@ public:
   vtkWeakPointer<vtkSMSessionProxyManager> ProxyManager;
   vtkSmartPointer<vtkSMNewWidgetRepresentationProxy> Proxy;
   Kind ProxyKind = Kind::None;
-  QPointer<pqView> View;                 // the view that holds Proxy
+  QPointer<pqView> View;                // the view that holds Proxy
   vtkWeakPointer<vtkSMProxy> ViewProxy; // its proxy, to remove Proxy from it
   std::vector<unsigned long> Observers;
   bool Shown = false;
@@ -186,8 +186,8 @@ public:
 
     this->Observers.push_back(pqCoreUtilities::connect(
       widget, vtkCommand::StartInteractionEvent, self, SLOT(onStartInteraction())));
-    this->Observers.push_back(pqCoreUtilities::connect(
-      widget, vtkCommand::InteractionEvent, self, SIGNAL(interaction())));
+    this->Observers.push_back(
+      pqCoreUtilities::connect(widget, vtkCommand::InteractionEvent, self, SIGNAL(interaction())));
     this->Observers.push_back(pqCoreUtilities::connect(
       widget, vtkCommand::EndInteractionEvent, self, SLOT(onEndInteraction())));
 
@@ -361,7 +361,8 @@ bool pqPiPrimitive3DWidget::readPrimitive(pisurf::PrimitiveSpec& spec) const
       bool same = true;
       for (int i = 0; i < 3; ++i)
       {
-        same = same && std::abs(turned[i] - current[i]) <= 1e-9 * std::max(1.0, std::abs(current[i]));
+        same =
+          same && std::abs(turned[i] - current[i]) <= 1e-9 * std::max(1.0, std::abs(current[i]));
       }
       if (!same)
       {

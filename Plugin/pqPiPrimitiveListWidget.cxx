@@ -16,8 +16,8 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
-#include <QLocale>
 #include <QLineEdit>
+#include <QLocale>
 #include <QPlainTextEdit>
 #include <QPointer>
 #include <QPushButton>
@@ -133,8 +133,8 @@ QString FieldText(const PrimitiveSpec& spec, const QString& name, int component)
 }
 
 // Sets one field from text; false with a message when the text is not a number.
-bool SetField(PrimitiveSpec& s, const QString& name, int component, const QString& text,
-  QString& error)
+bool SetField(
+  PrimitiveSpec& s, const QString& name, int component, const QString& text, QString& error)
 {
   if (name == "Name")
   {
@@ -420,9 +420,8 @@ public:
       return;
     }
     const PrimitiveSpec& spec = this->Model.Primitives[this->Row];
-    this->ParametersTitle->setText(QObject::tr("Primitive %1: %2")
-                                     .arg(this->Row + 1)
-                                     .arg(pisurf::TypeLabel(spec.Type)));
+    this->ParametersTitle->setText(
+      QObject::tr("Primitive %1: %2").arg(this->Row + 1).arg(pisurf::TypeLabel(spec.Type)));
     pqPiPrimitiveListWidget* self = this->Self;
     auto* panel = new QWidget(self);
     panel->setObjectName("PiParameters");
@@ -438,7 +437,8 @@ public:
       &pqPiPrimitiveListWidget::onSelectedTypeChanged);
     form->addRow(QObject::tr("Type"), type);
 
-    auto newEdit = [&](QWidget* parent, const Field& f, int i) {
+    auto newEdit = [&](QWidget* parent, const Field& f, int i)
+    {
       auto* edit = new QLineEdit(parent);
       edit->setObjectName(f.Count == 1 ? QString("PiParameter_%1").arg(f.Name)
                                        : QString("PiParameter_%1_%2").arg(f.Name).arg(i));
@@ -451,7 +451,8 @@ public:
         edit, &QLineEdit::editingFinished, self, &pqPiPrimitiveListWidget::onFieldEdited);
       return edit;
     };
-    auto addField = [&](const Field& f) {
+    auto addField = [&](const Field& f)
+    {
       if (f.Count == 1)
       {
         form->addRow(QObject::tr(f.Label.toUtf8().constData()), newEdit(panel, f, 0));
@@ -494,8 +495,7 @@ public:
     negate->setObjectName("PiParameter_Negate");
     negate->setChecked(spec.Negate);
     negate->setToolTip(QObject::tr("Multiply the primitive by \u22121."));
-    QObject::connect(
-      negate, &QCheckBox::toggled, self, &pqPiPrimitiveListWidget::onNegateToggled);
+    QObject::connect(negate, &QCheckBox::toggled, self, &pqPiPrimitiveListWidget::onNegateToggled);
     form->addRow(QString(), negate);
     addField(NameField);
 
@@ -540,7 +540,8 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
   adding->addWidget(internals.NewType, 1);
   auto* buttons = new QHBoxLayout();
   QHBoxLayout* row = adding;
-  auto button = [this, &row](const char* name, const QString& text, const QString& tip) {
+  auto button = [this, &row](const char* name, const QString& text, const QString& tip)
+  {
     auto* b = new QPushButton(text, this);
     b->setObjectName(name);
     b->setToolTip(tip);
@@ -558,8 +559,8 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
     internals.Remove, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::removePrimitive);
   internals.Duplicate =
     button("PiDuplicatePrimitive", tr("Duplicate"), tr("Insert a copy of the selected primitive"));
-  QObject::connect(internals.Duplicate, &QPushButton::clicked, this,
-    &pqPiPrimitiveListWidget::duplicatePrimitive);
+  QObject::connect(
+    internals.Duplicate, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::duplicatePrimitive);
   internals.Up = button("PiMovePrimitiveUp", tr("Up \u2191"), tr("Move the selected primitive up"));
   QObject::connect(
     internals.Up, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::movePrimitiveUp);
@@ -635,13 +636,15 @@ pqPiPrimitiveListWidget::pqPiPrimitiveListWidget(
   internals.ApplyText->setToolTip(tr("Read the text above as the model (validated first)"));
   internals.ApplyText->hide();
   layout->addWidget(internals.ApplyText);
-  QObject::connect(internals.ShowText, &QToolButton::toggled, this, [this](bool on) {
-    this->Internals->ShowText->setArrowType(on ? Qt::DownArrow : Qt::RightArrow);
-    this->Internals->ModelText->setVisible(on);
-    this->Internals->ApplyText->setVisible(on);
-  });
-  QObject::connect(internals.ApplyText, &QPushButton::clicked, this,
-    &pqPiPrimitiveListWidget::applyModelText);
+  QObject::connect(internals.ShowText, &QToolButton::toggled, this,
+    [this](bool on)
+    {
+      this->Internals->ShowText->setArrowType(on ? Qt::DownArrow : Qt::RightArrow);
+      this->Internals->ModelText->setVisible(on);
+      this->Internals->ApplyText->setVisible(on);
+    });
+  QObject::connect(
+    internals.ApplyText, &QPushButton::clicked, this, &pqPiPrimitiveListWidget::applyModelText);
 
   internals.refresh();
   // The property's text, both ways (unchecked until Apply, like every panel widget).

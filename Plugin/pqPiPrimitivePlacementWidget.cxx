@@ -60,8 +60,8 @@ Placement PlacementOf(int type)
         { { "Origin", "Center" }, { "Normal", entry.WidgetDirection } } };
     case pisurf::WidgetKind::Box:
       return { "InteractiveBox",
-        { { "Position", "Center" }, { "Rotation", "Orientation" },
-          { "Scale", entry.WidgetSize }, { "UseReferenceBounds", "WidgetUseReferenceBounds" },
+        { { "Position", "Center" }, { "Rotation", "Orientation" }, { "Scale", entry.WidgetSize },
+          { "UseReferenceBounds", "WidgetUseReferenceBounds" },
           { "ReferenceBounds", "WidgetReferenceBounds" } } };
     case pisurf::WidgetKind::Handle:
       return { "InteractiveHandle", { { "WorldPosition", "Center" } } };
@@ -73,10 +73,9 @@ Placement PlacementOf(int type)
 // catalogue's strings need not share addresses).
 bool SameFunctions(const Placement& a, const Placement& b)
 {
-  return std::equal(a.Functions.begin(), a.Functions.end(), b.Functions.begin(),
-    b.Functions.end(), [](const auto& x, const auto& y) {
-      return std::strcmp(x.first, y.first) == 0 && std::strcmp(x.second, y.second) == 0;
-    });
+  return std::equal(a.Functions.begin(), a.Functions.end(), b.Functions.begin(), b.Functions.end(),
+    [](const auto& x, const auto& y)
+    { return std::strcmp(x.first, y.first) == 0 && std::strcmp(x.second, y.second) == 0; });
 }
 
 // The box is always the unit box [-1, 1]^3 scaled by Radii: its reference-bounds
@@ -125,9 +124,8 @@ const char* PropertyOfMessage(const std::string& message)
 std::string PanelError(vtkSMProxy* proxy)
 {
   vtkNew<vtkPiPrimitive> primitive;
-  auto get3 = [&](const char* name, double v[3]) {
-    vtkSMUncheckedPropertyHelper(proxy, name).Get(v, 3);
-  };
+  auto get3 = [&](const char* name, double v[3])
+  { vtkSMUncheckedPropertyHelper(proxy, name).Get(v, 3); };
   double v[3];
   primitive->SetType(vtkSMUncheckedPropertyHelper(proxy, "Type").GetAsInt());
   // Every type's parameters (their properties hold the values of whichever type shows).
@@ -207,8 +205,8 @@ pqPiPrimitivePlacementWidget::pqPiPrimitivePlacementWidget(
   properties.TakeReference(proxy->NewPropertyIterator());
   for (properties->Begin(); !properties->IsAtEnd(); properties->Next())
   {
-    pqCoreUtilities::connect(properties->GetProperty(),
-      vtkCommand::UncheckedPropertyModifiedEvent, this, SLOT(scheduleCheck()));
+    pqCoreUtilities::connect(properties->GetProperty(), vtkCommand::UncheckedPropertyModifiedEvent,
+      this, SLOT(scheduleCheck()));
   }
   pqCoreUtilities::connect(proxy, vtkCommand::PropertyModifiedEvent, this, SLOT(scheduleCheck()));
   this->updateType();
@@ -225,9 +223,8 @@ pqPropertyWidget* pqPiPrimitivePlacementWidget::currentWidget() const
 void pqPiPrimitivePlacementWidget::updateType()
 {
   vtkSMProxy* proxy = this->proxy();
-  const int type = proxy->GetProperty("Type")
-    ? vtkSMUncheckedPropertyHelper(proxy, "Type").GetAsInt()
-    : -1;
+  const int type =
+    proxy->GetProperty("Type") ? vtkSMUncheckedPropertyHelper(proxy, "Type").GetAsInt() : -1;
   pqInternals& internals = *this->Internals;
   const Placement placement = PlacementOf(type);
   const Placement previous = PlacementOf(internals.CurrentType);
@@ -286,10 +283,10 @@ void pqPiPrimitivePlacementWidget::updateType()
   internals.Layout->addWidget(widget);
   internals.Current = widget;
   internals.CurrentGroup = group;
-  QObject::connect(widget, &pqPropertyWidget::changeAvailable, this,
-    &pqPropertyWidget::changeAvailable);
-  QObject::connect(widget, &pqPropertyWidget::changeFinished, this,
-    &pqPropertyWidget::changeFinished);
+  QObject::connect(
+    widget, &pqPropertyWidget::changeAvailable, this, &pqPropertyWidget::changeAvailable);
+  QObject::connect(
+    widget, &pqPropertyWidget::changeFinished, this, &pqPropertyWidget::changeFinished);
   widget->setView(this->view());
   if (this->isSelected())
   {
@@ -345,8 +342,8 @@ void pqPiPrimitivePlacementWidget::checkValues()
   internals.MarkedStyle = target->styleSheet();
   internals.MarkedTip = target->toolTip();
   target->setStyleSheet("QLineEdit, QTextEdit, QPlainTextEdit { background-color: #f4c7c3; }");
-  target->setToolTip(QString("Refused: %1. The last valid surface is kept.")
-                       .arg(QString::fromStdString(error)));
+  target->setToolTip(
+    QString("Refused: %1. The last valid surface is kept.").arg(QString::fromStdString(error)));
 }
 
 void pqPiPrimitivePlacementWidget::apply()

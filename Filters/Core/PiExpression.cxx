@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiExpression.h"
 
-#include <cctype>
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -306,7 +306,8 @@ private:
   {
     const size_t start = this->Pos;
     size_t end = start;
-    auto digits = [&]() {
+    auto digits = [&]()
+    {
       size_t n = 0;
       while (end < this->Text.size() && std::isdigit(static_cast<unsigned char>(this->Text[end])))
       {
@@ -364,8 +365,8 @@ private:
 };
 }
 
-bool ParseExpression(const std::string& text, const ParameterMap& parameters,
-  Polynomial3& result, std::string& error, std::shared_ptr<const ExpressionNode>* tree)
+bool ParseExpression(const std::string& text, const ParameterMap& parameters, Polynomial3& result,
+  std::string& error, std::shared_ptr<const ExpressionNode>* tree)
 {
   try
   {

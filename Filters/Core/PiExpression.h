@@ -60,9 +60,8 @@ bool IsSingleUse(const ExpressionNode& node);
 /// Returns false and sets `error` (result untouched) on any syntax error, unknown name,
 /// non-constant or negative/fractional exponent, division by a non-constant or by zero,
 /// a degree above MaxDegree or a non-finite coefficient.
-bool ParseExpression(const std::string& text, const ParameterMap& parameters,
-  Polynomial3& result, std::string& error,
-  std::shared_ptr<const ExpressionNode>* tree = nullptr);
+bool ParseExpression(const std::string& text, const ParameterMap& parameters, Polynomial3& result,
+  std::string& error, std::shared_ptr<const ExpressionNode>* tree = nullptr);
 
 /// The expression expanded with every variable v replaced by v + shift[v] (the parser's
 /// algebra, term by term: constants that cancel symbolically, as (x + 2.2) − 2.2, cancel

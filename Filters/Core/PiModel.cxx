@@ -76,7 +76,8 @@ std::string TypeKeys()
 }
 
 // The value of one of the type's parameters (its key is present in `j`).
-void ParseParameter(const json& v, const ParameterInfo& p, const std::string& path, PrimitiveSpec& s)
+void ParseParameter(
+  const json& v, const ParameterInfo& p, const std::string& path, PrimitiveSpec& s)
 {
   switch (p.Kind)
   {
@@ -205,7 +206,8 @@ void ParseTop(const json& j, Model& m)
   {
     if (!allowed.count(it.key()))
     {
-      Fail("model", "unknown key '" + it.key() +
+      Fail("model",
+        "unknown key '" + it.key() +
           "' (allowed: pisurf, blending, bounds, parameters, primitives, name, description)");
     }
   }
@@ -229,8 +231,8 @@ void ParseTop(const json& j, Model& m)
     {
       if (!IsValidParameterName(it.key()))
       {
-        Fail("parameters." + it.key(),
-          "invalid parameter name (letters, digits, '_'; not x, y or z)");
+        Fail(
+          "parameters." + it.key(), "invalid parameter name (letters, digits, '_'; not x, y or z)");
       }
       m.Parameters[it.key()] = Number(it.value(), "parameters." + it.key());
     }
@@ -267,8 +269,9 @@ void ParseTop(const json& j, Model& m)
   }
   if (unbounded && !m.HasBounds)
   {
-    Fail("bounds", "required: the model has an unbounded primitive (plane, cylinder, cone, "
-                   "hyperboloid, paraboloid or polynomial)");
+    Fail("bounds",
+      "required: the model has an unbounded primitive (plane, cylinder, cone, "
+      "hyperboloid, paraboloid or polynomial)");
   }
 }
 // The deepest nesting of arrays and objects, counting brackets outside strings (for
@@ -371,8 +374,8 @@ bool ParseModel(const std::string& text, Model& model, std::string& error)
     }
     std::string what = e.what();
     const size_t colon = what.find("syntax error");
-    error = "invalid JSON at line " + std::to_string(line) + ", column " +
-      std::to_string(column) + ": " + (colon != std::string::npos ? what.substr(colon) : what);
+    error = "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+      ": " + (colon != std::string::npos ? what.substr(colon) : what);
     return false;
   }
   catch (const ModelError& e)
@@ -588,8 +591,8 @@ bool MultiplyModels(
       if (!BuildFactor(s, m.Parameters, f, why))
       {
         error = "model " + std::to_string(i + 1) + ", primitive " +
-          (s.Name.empty() ? std::to_string(m.Primitives.size() + 1) : "'" + s.Name + "'") +
-          ": " + why;
+          (s.Name.empty() ? std::to_string(m.Primitives.size() + 1) : "'" + s.Name + "'") + ": " +
+          why;
         return false;
       }
       unbounded = unbounded || !f.Bounded;
@@ -604,7 +607,8 @@ bool MultiplyModels(
       }
       for (int a = 0; a < 3; ++a)
       {
-        m.Bounds[2 * a] = anyUnbounded ? std::min(m.Bounds[2 * a], in.Bounds[2 * a]) : in.Bounds[2 * a];
+        m.Bounds[2 * a] =
+          anyUnbounded ? std::min(m.Bounds[2 * a], in.Bounds[2 * a]) : in.Bounds[2 * a];
         m.Bounds[2 * a + 1] =
           anyUnbounded ? std::max(m.Bounds[2 * a + 1], in.Bounds[2 * a + 1]) : in.Bounds[2 * a + 1];
       }

@@ -148,16 +148,36 @@ void Polynomial3::Summarize()
       const int key = (t.I / h) * 100 + (t.J / h) * 10 + t.K / h;
       switch (key)
       {
-        case 0: slot = 0; break;
-        case 100: slot = 1; break;
-        case 10: slot = 2; break;
-        case 1: slot = 3; break;
-        case 200: slot = 4; break;
-        case 20: slot = 5; break;
-        case 2: slot = 6; break;
-        case 110: slot = 7; break;
-        case 101: slot = 8; break;
-        default: slot = 9; break; // 011: yz
+        case 0:
+          slot = 0;
+          break;
+        case 100:
+          slot = 1;
+          break;
+        case 10:
+          slot = 2;
+          break;
+        case 1:
+          slot = 3;
+          break;
+        case 200:
+          slot = 4;
+          break;
+        case 20:
+          slot = 5;
+          break;
+        case 2:
+          slot = 6;
+          break;
+        case 110:
+          slot = 7;
+          break;
+        case 101:
+          slot = 8;
+          break;
+        default:
+          slot = 9;
+          break; // 011: yz
       }
       (this->EvenQuartic ? this->Q2 : this->Q)[slot] = t.Coefficient;
     }
@@ -400,11 +420,16 @@ double Polynomial3::EvaluateWithGradient(const double p[3], double g[3]) const
   {
     switch (this->Degree)
     {
-      case 3: return NestedWithGradient<3>(this->Nested.data(), p, g);
-      case 4: return NestedWithGradient<4>(this->Nested.data(), p, g);
-      case 5: return NestedWithGradient<5>(this->Nested.data(), p, g);
-      case 6: return NestedWithGradient<6>(this->Nested.data(), p, g);
-      default: break;
+      case 3:
+        return NestedWithGradient<3>(this->Nested.data(), p, g);
+      case 4:
+        return NestedWithGradient<4>(this->Nested.data(), p, g);
+      case 5:
+        return NestedWithGradient<5>(this->Nested.data(), p, g);
+      case 6:
+        return NestedWithGradient<6>(this->Nested.data(), p, g);
+      default:
+        break;
     }
   }
   // Power tables shifted by one, with a zero below x^0: px[i − 1] is 0 for i = 0, so
@@ -560,7 +585,8 @@ double Polynomial3::RoundingBound(double magnitude) const
 {
   // Each term: at most degree + 3 roundings; the sum: one per term. Times 64 for the
   // row restrictions (binomial expansion about a row's middle) and double rounding.
-  const double operations = std::max(this->Degree, 0) + 4.0 + static_cast<double>(this->Terms.size());
+  const double operations =
+    std::max(this->Degree, 0) + 4.0 + static_cast<double>(this->Terms.size());
   return 64.0 * operations * DBL_EPSILON * magnitude;
 }
 
@@ -579,9 +605,8 @@ Interval Polynomial3::EvaluateInterval(const Interval box[3], double* magnitude)
   for (const auto& t : this->Terms)
   {
     const Interval m = Multiply(Multiply(px[t.I], py[t.J]), pz[t.K]);
-    const Interval c = t.Coefficient >= 0
-      ? Interval{ t.Coefficient * m.Lo, t.Coefficient * m.Hi }
-      : Interval{ t.Coefficient * m.Hi, t.Coefficient * m.Lo };
+    const Interval c = t.Coefficient >= 0 ? Interval{ t.Coefficient * m.Lo, t.Coefficient * m.Hi }
+                                          : Interval{ t.Coefficient * m.Hi, t.Coefficient * m.Lo };
     sum.Lo += c.Lo;
     sum.Hi += c.Hi;
     size += std::max(std::fabs(c.Lo), std::fabs(c.Hi));
@@ -757,7 +782,8 @@ void Polynomial3::RestrictToLine(const double o[3], const double d[3], double* o
     {
       for (int m = 0; m <= k; ++m)
       {
-        pw(a, k, m) = o[a] * (m < k ? pw(a, k - 1, m) : 0.0) + (m > 0 ? d[a] * pw(a, k - 1, m - 1) : 0.0);
+        pw(a, k, m) =
+          o[a] * (m < k ? pw(a, k - 1, m) : 0.0) + (m > 0 ? d[a] * pw(a, k - 1, m - 1) : 0.0);
       }
     }
   }
@@ -949,15 +975,32 @@ int Polynomial3::ExpandAbout(const double c[3], const double h[3], double* b) co
   static_assert(TaylorMaxDegree == 8, "ShiftAndScale is instantiated for degrees 0 to 8");
   switch (n)
   {
-    case 0: break;
-    case 1: ShiftAndScale<1>(c, h, b); break;
-    case 2: ShiftAndScale<2>(c, h, b); break;
-    case 3: ShiftAndScale<3>(c, h, b); break;
-    case 4: ShiftAndScale<4>(c, h, b); break;
-    case 5: ShiftAndScale<5>(c, h, b); break;
-    case 6: ShiftAndScale<6>(c, h, b); break;
-    case 7: ShiftAndScale<7>(c, h, b); break;
-    default: ShiftAndScale<8>(c, h, b); break;
+    case 0:
+      break;
+    case 1:
+      ShiftAndScale<1>(c, h, b);
+      break;
+    case 2:
+      ShiftAndScale<2>(c, h, b);
+      break;
+    case 3:
+      ShiftAndScale<3>(c, h, b);
+      break;
+    case 4:
+      ShiftAndScale<4>(c, h, b);
+      break;
+    case 5:
+      ShiftAndScale<5>(c, h, b);
+      break;
+    case 6:
+      ShiftAndScale<6>(c, h, b);
+      break;
+    case 7:
+      ShiftAndScale<7>(c, h, b);
+      break;
+    default:
+      ShiftAndScale<8>(c, h, b);
+      break;
   }
   return n;
 }

@@ -221,12 +221,12 @@ public:
   std::string ToString() const;
 
 private:
-  void Finish();        // sorts, merges, drops zeros, then Summarize()
-  void Summarize();     // recomputes the degree and the quadric fast path
+  void Finish();    // sorts, merges, drops zeros, then Summarize()
+  void Summarize(); // recomputes the degree and the quadric fast path
   // Powers 0..degree of each coordinate of p.
   void PowerTables(const double p[3], double* px, double* py, double* pz) const;
   std::vector<Monomial> Terms;
-  int Degree = -1; // -1 for the zero polynomial
+  int Degree = -1;                 // -1 for the zero polynomial
   int AxisDegree[3] = { 0, 0, 0 }; // largest power of each variable (Summarize)
   // Degree <= 2 (spheres, cylinders, quadrics: most factors) is evaluated from dense
   // coefficients: 1, x, y, z, x², y², z², xy, xz, yz.

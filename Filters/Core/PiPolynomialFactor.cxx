@@ -41,7 +41,8 @@ double PolynomialFactor::EvaluateWithGradient(const double p[3], double g[3]) co
   return v;
 }
 
-void PolynomialFactor::EvaluateStar(const double p[3], double h, double values[7], double g[3]) const
+void PolynomialFactor::EvaluateStar(
+  const double p[3], double h, double values[7], double g[3]) const
 {
   const double(*A)[3] = this->A;
   if (IsDiagonal(A))
@@ -168,8 +169,8 @@ void PolynomialFactor::PrepareIntervals()
     }
     this->World = this->Poly.Compose(this->A, this->B);
     this->WorldMagnitude = this->Poly.Absolute().Compose(absA, absB);
-    this->HasWorld = this->World.GetDegree() >= 0 && this->World.IsFinite() &&
-      this->WorldMagnitude.IsFinite();
+    this->HasWorld =
+      this->World.GetDegree() >= 0 && this->World.IsFinite() && this->WorldMagnitude.IsFinite();
   }
 }
 
@@ -199,8 +200,8 @@ const V4 (&OctantSigns)[8][2] = OctantSignsTable.Signs;
 // 4..7) adds, for every class c of odd powers present (bit c of `classes`), the class's
 // negative and positive parts where its terms keep their sign there (σ = +1), else
 // minus its positive and negative parts.
-void AddClassSums(const double negatives[8], const double positives[8], unsigned classes,
-  V4 lo[2], V4 hi[2])
+void AddClassSums(
+  const double negatives[8], const double positives[8], unsigned classes, V4 lo[2], V4 hi[2])
 {
   const V4 zero = { 0.0, 0.0, 0.0, 0.0 };
   for (int c = 0; c < 8; ++c)
@@ -410,7 +411,8 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
     olo[o] = octLo[o / 4][o % 4];
     ohi[o] = octHi[o / 4][o % 4];
   }
-  auto widen = [rounding](double l, double u) {
+  auto widen = [rounding](double l, double u)
+  {
     const double slack = std::max(1e-12 * (std::fabs(l) + std::fabs(u)), rounding);
     return Interval{ l - slack, u + slack };
   };
@@ -473,7 +475,8 @@ bool PolynomialFactor::EvaluateTaylor(const double box[6], Interval& whole, Inte
   return true;
 }
 
-void PolynomialFactor::IntersectNatural(const double box[6], Interval& whole, Interval* octants) const
+void PolynomialFactor::IntersectNatural(
+  const double box[6], Interval& whole, Interval* octants) const
 {
   // Above degree 2 the expression as written can be tighter (the table top's
   // (8z+5)^6, whose terms the expansion bounds one by one): intersect with it, and on

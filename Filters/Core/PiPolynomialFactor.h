@@ -126,8 +126,8 @@ struct PolynomialFactor
   /// from the same expansion (∂/∂u_axis term by term, over the octant's half ranges),
   /// widened by degree² times the expansion's rounding and 1e-12 of its terms: it holds
   /// the exact derivative.
-  bool EvaluateTaylor(const double box[6], Interval& whole, Interval* octants,
-    bool natural = true, Interval* derivatives = nullptr, int axis = -1) const;
+  bool EvaluateTaylor(const double box[6], Interval& whole, Interval* octants, bool natural = true,
+    Interval* derivatives = nullptr, int axis = -1) const;
   /// Whether EvaluateTaylor intersects with the expression as written (IntersectNatural):
   /// a degree above 2 and a single-use expression, whose enclosure is the exact range.
   /// Other expressions are not used: on the paper's cup (two tori written as squares of

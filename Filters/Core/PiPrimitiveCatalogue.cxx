@@ -35,8 +35,7 @@ bool BuildSphere(const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& ou
   return true;
 }
 
-bool BuildEllipsoid(
-  const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
+bool BuildEllipsoid(const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
 {
   out.Poly = Sq(0, s.Radii[0]) + Sq(1, s.Radii[1]) + Sq(2, s.Radii[2]) - Const(1);
   std::copy(s.Radii, s.Radii + 3, out.Half);
@@ -71,8 +70,7 @@ bool BuildPlane(const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out
   return true;
 }
 
-bool BuildCylinder(
-  const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
+bool BuildCylinder(const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
 {
   out.Poly = Var(0).Pow(2) + Var(1).Pow(2) - Const(s.Radius * s.Radius);
   return true;
@@ -99,8 +97,7 @@ bool BuildHyperboloid2(
   return true;
 }
 
-bool BuildParaboloid(
-  const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
+bool BuildParaboloid(const PrimitiveSpec& s, const ParameterMap&, PrimitiveShape& out, std::string&)
 {
   out.Poly = Sq(0, s.Radii[0]) + Sq(1, s.Radii[1]) - Var(2);
   return true;
@@ -204,11 +201,10 @@ std::string* ExpressionOf(PrimitiveSpec& s)
 using K = ParameterKind;
 using C = Constraint;
 
-const ParameterInfo Radius = { "radius", "Radius", K::Number, 1, { 1, 0, 0 }, nullptr,
-  C::Positive, "Radius R", "R", "length", "Positive radius.", RadiusOf, nullptr, nullptr };
+const ParameterInfo Radius = { "radius", "Radius", K::Number, 1, { 1, 0, 0 }, nullptr, C::Positive,
+  "Radius R", "R", "length", "Positive radius.", RadiusOf, nullptr, nullptr };
 const ParameterInfo Radii3 = { "radii", "Radii", K::Number, 3, { 1, 1, 1 }, nullptr, C::Positive,
-  "Semi-axes a, b, c", "a b c", "length", "Three positive semi-axes.", RadiiOf, nullptr,
-  nullptr };
+  "Semi-axes a, b, c", "a b c", "length", "Three positive semi-axes.", RadiiOf, nullptr, nullptr };
 const ParameterInfo Radii2 = { "radii", "Radii", K::Number, 2, { 1, 1, 1 }, nullptr, C::Positive,
   "Semi-axes a, b", "a b", "length", "Two positive semi-axes.", RadiiOf, nullptr, nullptr };
 const ParameterInfo Exponent = { "exponent", "Exponent", K::Integer, 1, { 4, 0, 0 }, nullptr,
@@ -218,12 +214,11 @@ const ParameterInfo MajorRadius = { "major_radius", "MajorRadius", K::Number, 1,
   nullptr, C::Positive, "Major radius R", "R", "length",
   "Distance from the centre to the tube's axis (positive).", MajorRadiusOf, nullptr, nullptr };
 const ParameterInfo MinorRadius = { "minor_radius", "MinorRadius", K::Number, 1, { 0.25, 0, 0 },
-  nullptr, C::Positive, "Minor radius \u03c1", "\u03c1", "length",
-  "Radius of the tube (positive).", MinorRadiusOf, nullptr, nullptr };
+  nullptr, C::Positive, "Minor radius \u03c1", "\u03c1", "length", "Radius of the tube (positive).",
+  MinorRadiusOf, nullptr, nullptr };
 const ParameterInfo Normal = { "normal", "Normal", K::Number, 3, { 0, 0, 1 }, nullptr,
   C::NonZeroVector, "Normal (x, y, z)", "n", "",
-  "Normal direction (not zero); the plane passes through the centre.", NormalOf, nullptr,
-  nullptr };
+  "Normal direction (not zero); the plane passes through the centre.", NormalOf, nullptr, nullptr };
 const ParameterInfo Angle = { "angle", "Angle", K::Number, 1, { 30, 0, 0 }, nullptr,
   C::OpenRightAngle, "Half-angle \u03b8", "\u03b8", "degrees",
   "Between 0 and 90 degrees, exclusive.", AngleOf, nullptr, nullptr };
@@ -240,8 +235,7 @@ using W = WidgetKind;
 const std::vector<PrimitiveInfo>& Entries()
 {
   static const std::vector<PrimitiveInfo> entries = {
-    { T::Sphere, "sphere", "Sphere", { Radius }, true, BuildSphere, W::Sphere, "Radius",
-      nullptr },
+    { T::Sphere, "sphere", "Sphere", { Radius }, true, BuildSphere, W::Sphere, "Radius", nullptr },
     { T::Ellipsoid, "ellipsoid", "Ellipsoid", { Radii3 }, true, BuildEllipsoid, W::Box, "Radii",
       nullptr },
     { T::Superellipsoid, "superellipsoid", "Superellipsoid", { Radii3, Exponent }, true,
@@ -249,19 +243,19 @@ const std::vector<PrimitiveInfo>& Entries()
     { T::Torus, "torus", "Torus", { MajorRadius, MinorRadius }, true, BuildTorus, W::Cylinder,
       "MajorRadius", "Axis" },
     { T::Plane, "plane", "Plane", { Normal }, false, BuildPlane, W::Plane, nullptr, "Normal" },
-    { T::Cylinder, "cylinder", "Cylinder", { Radius }, false, BuildCylinder, W::Cylinder,
-      "Radius", "Axis" },
+    { T::Cylinder, "cylinder", "Cylinder", { Radius }, false, BuildCylinder, W::Cylinder, "Radius",
+      "Axis" },
     { T::Cone, "cone", "Cone", { Angle }, false, BuildCone, W::Plane, nullptr, "Axis" },
-    { T::Hyperboloid1, "hyperboloid1", "Hyperboloid1", { Radii3 }, false, BuildHyperboloid1,
-      W::Box, "Radii", nullptr },
-    { T::Hyperboloid2, "hyperboloid2", "Hyperboloid2", { Radii3 }, false, BuildHyperboloid2,
-      W::Box, "Radii", nullptr },
+    { T::Hyperboloid1, "hyperboloid1", "Hyperboloid1", { Radii3 }, false, BuildHyperboloid1, W::Box,
+      "Radii", nullptr },
+    { T::Hyperboloid2, "hyperboloid2", "Hyperboloid2", { Radii3 }, false, BuildHyperboloid2, W::Box,
+      "Radii", nullptr },
     { T::Paraboloid, "paraboloid", "Paraboloid", { Radii2 }, false, BuildParaboloid, W::Box,
       "Radii", nullptr },
-    { T::HyperbolicParaboloid, "hyperbolic_paraboloid", "HyperbolicParaboloid", { Radii2 },
-      false, BuildHyperbolicParaboloid, W::Box, "Radii", nullptr },
-    { T::Polynomial, "polynomial", "Polynomial", { Expression }, false, BuildPolynomial,
-      W::Handle, nullptr, nullptr },
+    { T::HyperbolicParaboloid, "hyperbolic_paraboloid", "HyperbolicParaboloid", { Radii2 }, false,
+      BuildHyperbolicParaboloid, W::Box, "Radii", nullptr },
+    { T::Polynomial, "polynomial", "Polynomial", { Expression }, false, BuildPolynomial, W::Handle,
+      nullptr, nullptr },
   };
   return entries;
 }
@@ -350,8 +344,7 @@ bool Allows(Constraint rule, double v)
     case C::NonZeroVector:
       return std::isfinite(v);
     case C::EvenExponent:
-      return v == std::floor(v) && v >= 2 && v <= MaxDegree &&
-        static_cast<int>(v) % 2 == 0;
+      return v == std::floor(v) && v >= 2 && v <= MaxDegree && static_cast<int>(v) % 2 == 0;
     case C::OpenRightAngle:
       return std::isfinite(v) && v > 0.0 && v < 90.0;
     default:

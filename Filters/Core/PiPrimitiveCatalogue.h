@@ -69,8 +69,8 @@ struct ParameterInfo
   const char* Key;      // the .pisurf key, "major_radius"
   const char* Property; // the vtkPiPrimitive / Pi Primitive property, "MajorRadius"
   ParameterKind Kind;
-  int Count;             // components read and written (radii: 2 or 3)
-  double Default[3];     // Number: the first Count; Integer: Default[0]
+  int Count;               // components read and written (radii: 2 or 3)
+  double Default[3];       // Number: the first Count; Integer: Default[0]
   const char* DefaultText; // Text
   Constraint Rule;
   const char* Label;   // the editor's label, without the unit: "Major radius R"
@@ -88,8 +88,8 @@ struct PrimitiveShape
 {
   Polynomial3 Poly;
   std::shared_ptr<const ExpressionNode> Natural; // a polynomial's expression tree
-  double Shift[3] = { 0, 0, 0 };  // the expression's variables are q + Shift
-  double Half[3] = { -1, -1, -1 }; // local half extents; negative: unbounded
+  double Shift[3] = { 0, 0, 0 };                 // the expression's variables are q + Shift
+  double Half[3] = { -1, -1, -1 };               // local half extents; negative: unbounded
 };
 
 /// One primitive type.
@@ -102,8 +102,8 @@ struct PrimitiveInfo
   bool Bounded; // the surface lies in a box given by the parameters (Half set)
   /// The canonical polynomial (Documentation/pisurf-format.md). Only called when every
   /// parameter satisfied its constraint; false with a message otherwise.
-  bool (*Build)(const PrimitiveSpec& spec, const ParameterMap& parameters,
-    PrimitiveShape& shape, std::string& error);
+  bool (*Build)(const PrimitiveSpec& spec, const ParameterMap& parameters, PrimitiveShape& shape,
+    std::string& error);
   WidgetKind Widget;
   const char* WidgetSize;      // the property the widget's radius or scale edits, or null
   const char* WidgetDirection; // the property the widget's axis or normal edits, or null

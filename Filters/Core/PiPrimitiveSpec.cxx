@@ -105,7 +105,6 @@ void RotationMatrix(const double axis[3], double angleDeg, double R[3][3])
   R[2][2] = t * z * z + c;
 }
 
-
 bool OrientationMatrix(const PrimitiveSpec& s, double R[3][3], std::string& error)
 {
   for (int i = 0; i < 3; ++i)
@@ -149,8 +148,8 @@ bool OrientationMatrix(const PrimitiveSpec& s, double R[3][3], std::string& erro
   return true;
 }
 
-bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters,
-  PolynomialFactor& factor, std::string& error)
+bool BuildFactor(const PrimitiveSpec& s, const ParameterMap& parameters, PolynomialFactor& factor,
+  std::string& error)
 {
   if (!IsPrimitiveType(static_cast<int>(s.Type)))
   {

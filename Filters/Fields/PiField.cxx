@@ -42,7 +42,8 @@ void Field::CastRay(const double o[3], const double d[3], double t0, double t1,
 {
   roots.clear();
   const int n = 4096;
-  auto at = [&](double t) {
+  auto at = [&](double t)
+  {
     const double p[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
     return this->EvaluateCompressed(p);
   };
@@ -63,11 +64,13 @@ bool Field::ProbeVertex(const double p[3], double probe, double tolerance, doubl
   double& gradientNorm, int& nearest) const
 {
   this->EvaluateVertex(p, normal, gradientNorm, nearest);
-  const double logProbe = LargestLogAtProbes(p, probe, [this](const double* q) {
-    double logAbs;
-    this->EvaluateSignAndLog(q, logAbs);
-    return logAbs;
-  });
+  const double logProbe = LargestLogAtProbes(p, probe,
+    [this](const double* q)
+    {
+      double logAbs;
+      this->EvaluateSignAndLog(q, logAbs);
+      return logAbs;
+    });
   return std::log(gradientNorm) + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 }

@@ -77,8 +77,8 @@ public:
   /// nearest factor) and whether p is singular on the scale `probe`: |∇F|·probe is at
   /// most `tolerance` times the largest |F| at the six points p ± probe·e_i (compared
   /// in logarithms, so it holds where |∇F| and F leave the double range).
-  virtual bool ProbeVertex(const double p[3], double probe, double tolerance,
-    double normal[3], double& gradientNorm, int& nearest) const;
+  virtual bool ProbeVertex(const double p[3], double probe, double tolerance, double normal[3],
+    double& gradientNorm, int& nearest) const;
 
   /// The first root of F on the segment from `from` to `to`, where F(from) > 0, as the
   /// fraction s of the way, certified to within `tolerance` (a length): return true only
@@ -86,7 +86,8 @@ public:
   /// s. A field with structure to exploit (a molecule, whose product is astronomically
   /// large away from its spheres) answers in one pass; the default says false, and the
   /// mesher's general root finding runs.
-  virtual bool FirstRoot(const double from[3], const double to[3], double tolerance, double& s) const
+  virtual bool FirstRoot(
+    const double from[3], const double to[3], double tolerance, double& s) const
   {
     (void)from;
     (void)to;
@@ -136,7 +137,7 @@ public:
   /// A vertex on the mesher's edge from `a` to `b`.
   struct EdgeVertex
   {
-    double S = 0.0;          ///< the root, as the fraction of the way from a to b
+    double S = 0.0; ///< the root, as the fraction of the way from a to b
     double Normal[3] = { 0, 0, 0 };
     double GradientNorm = 0.0;
     int Nearest = -1;
@@ -152,8 +153,8 @@ public:
   /// that formula) and whether x is OffOuterSide. A field that can restrict itself to
   /// the segment once (a molecule: the few atoms that reach it) answers in a fraction of
   /// the time of repeated Evaluate calls; the default says false.
-  virtual bool RefineEdge(const double* /*a*/, const double* /*b*/, double /*va*/,
-    double /*vb*/, int /*from*/, double /*tolerance*/, EdgeVertex& /*vertex*/) const
+  virtual bool RefineEdge(const double* /*a*/, const double* /*b*/, double /*va*/, double /*vb*/,
+    int /*from*/, double /*tolerance*/, EdgeVertex& /*vertex*/) const
   {
     return false;
   }

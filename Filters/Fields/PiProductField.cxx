@@ -41,8 +41,7 @@ void ProductField::EvaluateVertex(
   this->Kernel->EvaluateVertex(p, normal, gradientNorm, nearest);
 }
 
-int ProductField::ClassifyBoxAndOctants(
-  const double box[6], int octants[8], bool allOctants) const
+int ProductField::ClassifyBoxAndOctants(const double box[6], int octants[8], bool allOctants) const
 {
   return this->Kernel->ClassifyBoxAndOctants(box, octants, allOctants);
 }
@@ -74,8 +73,7 @@ static bool ProbesSayZeroGradient(double gradient, double logGradient, double pr
       bestExponent = e;
     }
   }
-  if (bestMantissa != 0.0 && bestExponent > -900 && bestExponent < 900 &&
-    std::isnormal(gradient))
+  if (bestMantissa != 0.0 && bestExponent > -900 && bestExponent < 900 && std::isnormal(gradient))
   {
     const double lhs = gradient * probe;
     const double rhs = tolerance * pisurf::Ldexp(bestMantissa, static_cast<int>(bestExponent));
@@ -90,8 +88,8 @@ static bool ProbesSayZeroGradient(double gradient, double logGradient, double pr
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 
-bool ProductField::ProbeVertex(const double p[3], double probe, double tolerance,
-  double normal[3], double& gradientNorm, int& nearest) const
+bool ProductField::ProbeVertex(const double p[3], double probe, double tolerance, double normal[3],
+  double& gradientNorm, int& nearest) const
 {
   double logGradient, mantissa[6];
   long exponent[6];

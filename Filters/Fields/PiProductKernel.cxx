@@ -15,8 +15,8 @@ ProductKernel::ProductKernel(std::vector<Factor> factors, double blending)
     this->Factors.begin(), this->Factors.end(), [](const Factor& f) { return f.IsPolynomial; });
   this->StarQuadric.assign(this->Factors.size(), 0);
   this->StarEvenQuartic.assign(this->Factors.size(), 0);
-  this->StarFactorsOnly = this->AllPolynomial && !this->Factors.empty() &&
-    this->Factors.size() <= MaxPlainVertex;
+  this->StarFactorsOnly =
+    this->AllPolynomial && !this->Factors.empty() && this->Factors.size() <= MaxPlainVertex;
   for (size_t k = 0; k < this->Factors.size(); ++k)
   {
     Factor& f = this->Factors[k];
@@ -166,8 +166,6 @@ double ProductKernel::EvaluateCompressed(const double p[3]) const
   const double value = logAbs > 700 ? logAbs : std::log1p(std::exp(logAbs));
   return std::copysign(value, fm);
 }
-
-
 
 void ProductKernel::EvaluateScaled(const double p[3], double& mantissa, long& exponent) const
 {

@@ -47,8 +47,7 @@ struct Factor
   }
   double EvaluateWithGradient(const double p[3], double g[3]) const
   {
-    return this->IsPolynomial ? this->Polynomial.EvaluateWithGradient(p, g)
-                              : this->Generic(p, g);
+    return this->IsPolynomial ? this->Polynomial.EvaluateWithGradient(p, g) : this->Generic(p, g);
   }
 };
 
@@ -94,8 +93,8 @@ public:
   /// normal and nearest factor likewise where the plain product holds at every point
   /// (the mesher's vertices, four at a time).
   static constexpr int MaxVertices = 4;
-  void EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
-    double* gradientNorm, int* nearest) const;
+  void EvaluateVertices(
+    int count, const double (*p)[3], double (*normal)[3], double* gradientNorm, int* nearest) const;
   /// Every factor (at most MaxVertices·8 of them) is a quadric or a quartic in the
   /// squares in a diagonal frame (spheres, ellipsoids, axis-aligned cylinders, tori,
   /// superquadrics of exponent 4, centred expressions): EvaluateOnSegments applies.
@@ -106,17 +105,16 @@ public:
   /// instruction. ok[j] is false (as for EvaluateOnAxisWithSlope) where a factor's
   /// value is beyond 2^min(256, 1000 / factors) or non-zero below its inverse, where F
   /// or the slope is not finite, or where a local coordinate reaches 1e30.
-  void EvaluateOnSegments(int count, const double (*a)[3], const double (*d)[3],
-    const double* s, double* value, double* slope, bool* ok) const;
+  void EvaluateOnSegments(int count, const double (*a)[3], const double (*d)[3], const double* s,
+    double* value, double* slope, bool* ok) const;
   /// EvaluateVertex and the values of F at the six points p ± probe·e_a (as mantissa·
   /// 2^exponent, ordered as Polynomial3::EvaluateStar: −x, +x, −y, +y, −z, +z) in one
   /// pass over the factors, each factor's terms read once (PolynomialFactor::
   /// EvaluateStar): the attributes of a surface point and its singularity probes
   /// (RayCaster::Attributes) for a third of the separate evaluations' work. The results
   /// may differ from EvaluateVertex's and EvaluateScaled's in the last bits.
-  void EvaluateVertexStar(const double p[3], double probe, double normal[3],
-    double& gradientNorm, int& nearest, double& logGradientNorm, double probeMantissa[6],
-    long probeExponent[6]) const;
+  void EvaluateVertexStar(const double p[3], double probe, double normal[3], double& gradientNorm,
+    int& nearest, double& logGradientNorm, double probeMantissa[6], long probeExponent[6]) const;
   /// What EvaluateVertexIfRegular needs for one probe length h and a box holding every
   /// point it will be asked about (PrepareProbes): per factor i and axis a, a bound on
   /// how far the factor's computed value at p ± s·e_a (|s| <= h) can be from its
@@ -145,8 +143,7 @@ public:
   /// of more than 32 factors or outside the plain double range, non-polynomial factors,
   /// and points near a vanishing gradient. ln|∇F| only if asked (a logarithm per point).
   bool EvaluateVertexIfRegular(const double p[3], const ProbeBounds& bounds, double tolerance,
-    double normal[3], double& gradientNorm, int& nearest,
-    double* logGradientNorm = nullptr) const;
+    double normal[3], double& gradientNorm, int& nearest, double* logGradientNorm = nullptr) const;
   /// EvaluateVertexIfRegular at `count` points (up to MaxVertices): the same results,
   /// bit for bit, regular[j] being its answer at p[j]. Where HasStarFactorsOnly(), the
   /// factors, the plain-range test, the bound of the probes' |F| and the product rule
@@ -154,8 +151,7 @@ public:
   /// (EvaluateVertices' kernels), with the scalar operations in their order; else one
   /// point at a time. (A ray's hits, four at a time: RayCaster::Attributes.)
   void EvaluateVerticesIfRegular(int count, const double (*p)[3], const ProbeBounds& bounds,
-    double tolerance, double (*normal)[3], double* gradientNorm, int* nearest,
-    bool* regular) const;
+    double tolerance, double (*normal)[3], double* gradientNorm, int* nearest, bool* regular) const;
   /// F(p) = mantissa·2^exponent with mantissa in ±[0.5, 1) or 0; never overflows.
   void EvaluateScaled(const double p[3], double& mantissa, long& exponent) const;
   /// ln|F(p)| (−inf where F = 0) and the sign of F (−1, 0, 1); never overflows.
@@ -213,8 +209,8 @@ public:
   /// parallelism) and the product is plain doubles wherever every factor and partial
   /// product stays within 2^±256 (where the scaled product would not rescale either);
   /// other points go through EvaluateRestricted.
-  void EvaluateRestrictedRow(const double* coefficients, double t0, int n,
-    const double origin[3], const double step[3], double* values) const;
+  void EvaluateRestrictedRow(const double* coefficients, double t0, int n, const double origin[3],
+    const double step[3], double* values) const;
   /// F and dF/dt at parameter t of a RestrictLine restriction, in plain doubles (the
   /// product rule over the factors), for Newton steps along a grid row; false if a
   /// factor is not a polynomial, leaves 2^±min(256, 1000 / factors) or a result is not

@@ -232,8 +232,8 @@ int ProductKernel::ClassifyBoxAndOctants(
   {
     const PolynomialFactor& f = this->Factors[i].Polynomial;
     Interval octant[8], derivative[8];
-    expanded[i] = f.EvaluateTaylor(
-      box, whole[i], octant, false, derivativesKnown ? derivative : nullptr, axis);
+    expanded[i] =
+      f.EvaluateTaylor(box, whole[i], octant, false, derivativesKnown ? derivative : nullptr, axis);
     derivativesKnown = derivativesKnown && expanded[i];
     if (derivativesKnown)
     {

@@ -4,8 +4,8 @@
 #ifndef PiProductKernelInternals_h
 #define PiProductKernelInternals_h
 
-#include "PiProductKernel.h"
 #include "PiFloat.h"
+#include "PiProductKernel.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -87,8 +87,8 @@ struct ScaledProduct
 
   void Normalize()
   {
-    const double a = std::max({ std::fabs(this->P), std::fabs(this->G[0]), std::fabs(this->G[1]),
-      std::fabs(this->G[2]) });
+    const double a = std::max(
+      { std::fabs(this->P), std::fabs(this->G[0]), std::fabs(this->G[1]), std::fabs(this->G[2]) });
     if ((a > Big || a < Small) && a != 0.0 && std::isfinite(a))
     {
       int ex;
@@ -138,8 +138,8 @@ inline void LoadQuadricGroup(
 // Such a group restricted to the line through p along Axis (QuadricOnAxisOf on the two
 // other local coordinates).
 template <int Axis>
-inline void QuadricGroupOnAxis(const V4* scale, const V4* shift, const V4* q, const double p[3],
-  V4& c0, V4& c1, V4& c2)
+inline void QuadricGroupOnAxis(
+  const V4* scale, const V4* shift, const V4* q, const double p[3], V4& c0, V4& c1, V4& c2)
 {
   constexpr int u = (Axis + 1) % 3, w = (Axis + 2) % 3;
   const V4 qu = scale[u] * p[u] + shift[u], qw = scale[w] * p[w] + shift[w];

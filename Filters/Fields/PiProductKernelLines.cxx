@@ -17,7 +17,8 @@ void ProductKernel::RestrictLine(const double o[3], const double d[3], double* c
   }
 }
 
-double ProductKernel::EvaluateRestricted(const double* coefficients, double t, const double p[3]) const
+double ProductKernel::EvaluateRestricted(
+  const double* coefficients, double t, const double p[3]) const
 {
   double m = 1.0;
   long e = 0;
@@ -58,9 +59,15 @@ bool ProductKernel::RestrictToAxis(const double p[3], int axis, double* coeffici
       // (A literal axis makes every index a constant: the group stays in registers.)
       switch (axis)
       {
-        case 0: QuadricGroupOnAxis<0>(scale, shift, q, p, c0, c1, c2); break;
-        case 1: QuadricGroupOnAxis<1>(scale, shift, q, p, c0, c1, c2); break;
-        default: QuadricGroupOnAxis<2>(scale, shift, q, p, c0, c1, c2); break;
+        case 0:
+          QuadricGroupOnAxis<0>(scale, shift, q, p, c0, c1, c2);
+          break;
+        case 1:
+          QuadricGroupOnAxis<1>(scale, shift, q, p, c0, c1, c2);
+          break;
+        default:
+          QuadricGroupOnAxis<2>(scale, shift, q, p, c0, c1, c2);
+          break;
       }
       for (size_t l = 0; l < 4 && k0 + l < count; ++l)
       {
@@ -137,8 +144,8 @@ double ProductKernel::EvaluateOnAxis(const double* coefficients, int axis, doubl
   return this->Finish(m, e);
 }
 
-void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, double x,
-  double& value, int& productSign, double& logProduct, double& logSlope) const
+void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, double x, double& value,
+  int& productSign, double& logProduct, double& logSlope) const
 {
   double m = 1.0, slope = 0.0;
   long e = 0;
@@ -180,8 +187,8 @@ void ProductKernel::EvaluateOnAxisLog(const double* coefficients, int axis, doub
 // polynomial c (n coefficients) and its derivative at u, the derivative scaled to the
 // caller's parameter by `scale`, multiplied into product and derivative (product rule);
 // false where the factor is beyond `bound` or below `inverse` = 1 / bound (0 allowed).
-static inline bool MultiplyWithSlope(const double* c, int n, double u, double scale,
-  double bound, double inverse, double& product, double& derivative)
+static inline bool MultiplyWithSlope(const double* c, int n, double u, double scale, double bound,
+  double inverse, double& product, double& derivative)
 {
   double v, d;
   if (n == 3)
@@ -225,8 +232,8 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
     const double* shift = this->QuadricRows.data() + (3 + axis) * stride;
     for (size_t k = 0; k < count; ++k, coefficients += 3)
     {
-      if (!MultiplyWithSlope(
-            coefficients, 3, scale[k] * x + shift[k], scale[k], bound, inverse, product, derivative))
+      if (!MultiplyWithSlope(coefficients, 3, scale[k] * x + shift[k], scale[k], bound, inverse,
+            product, derivative))
       {
         return false;
       }
@@ -239,8 +246,8 @@ bool ProductKernel::EvaluateOnAxisWithSlope(
   {
     const PolynomialFactor& pf = f.Polynomial;
     const int n = std::max(pf.Poly.GetDegree(), 0) + 1;
-    if (!MultiplyWithSlope(coefficients, n, pf.A[axis][axis] * x + pf.B[axis],
-          pf.A[axis][axis], bound, inverse, product, derivative))
+    if (!MultiplyWithSlope(coefficients, n, pf.A[axis][axis] * x + pf.B[axis], pf.A[axis][axis],
+          bound, inverse, product, derivative))
     {
       return false;
     }
@@ -296,7 +303,8 @@ PISURF_AVX2_CLONES
 void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0, int n,
   const double origin[3], const double step[3], double* values) const
 {
-  auto pointAt = [&](int i, double p[3]) {
+  auto pointAt = [&](int i, double p[3])
+  {
     for (int k = 0; k < 3; ++k)
     {
       p[k] = origin[k] + i * step[k];
@@ -353,10 +361,18 @@ void ProductKernel::EvaluateRestrictedRow(const double* coefficients, double t0,
       // (The usual term counts with the loop unrolled: the same operations.)
       switch (terms)
       {
-        case 3: HornerGroup<3, Vectors>(acc, t, c, 3); break;
-        case 5: HornerGroup<5, Vectors>(acc, t, c, 5); break;
-        case 7: HornerGroup<7, Vectors>(acc, t, c, 7); break;
-        default: HornerGroup<0, Vectors>(acc, t, c, terms); break;
+        case 3:
+          HornerGroup<3, Vectors>(acc, t, c, 3);
+          break;
+        case 5:
+          HornerGroup<5, Vectors>(acc, t, c, 5);
+          break;
+        case 7:
+          HornerGroup<7, Vectors>(acc, t, c, 7);
+          break;
+        default:
+          HornerGroup<0, Vectors>(acc, t, c, terms);
+          break;
       }
       for (int v = 0; v < Vectors; ++v)
       {

@@ -49,8 +49,7 @@ struct PlainTest
   double SmallProduct = 1.0, BigProduct = 1.0;
   void Add(double f, const double g[3])
   {
-    const double a = std::fabs(f), g0 = std::fabs(g[0]), g1 = std::fabs(g[1]),
-                 g2 = std::fabs(g[2]);
+    const double a = std::fabs(f), g0 = std::fabs(g[0]), g1 = std::fabs(g[1]), g2 = std::fabs(g[2]);
     // (& rather than &&: no branch per comparison; the same value.)
     this->Finite = this->Finite & (a > 0.0) & (a <= Big) & (g0 <= Big) & (g1 <= Big) & (g2 <= Big);
     this->SmallProduct *= std::min(1.0, a);
@@ -158,9 +157,8 @@ struct PlainTest4
 // FinishPlainVertex's plain path at four points (lanes; the first `count` written) from
 // each factor's values f[k] and gradients g[k] there: its operations in its order (the
 // same bits). (FinishVertex's SafeLdexp(|G|, 0) is |G| itself.)
-__attribute__((always_inline)) static inline void FinishPlainVertices(const V4* f,
-  const V4 (*g)[3], size_t factors, int count, double (*normal)[3], double* gradientNorm,
-  int* nearest)
+__attribute__((always_inline)) static inline void FinishPlainVertices(const V4* f, const V4 (*g)[3],
+  size_t factors, int count, double (*normal)[3], double* gradientNorm, int* nearest)
 {
   const V4 zero = V4{ 0, 0, 0, 0 }, infinity = zero + std::numeric_limits<double>::infinity();
   V4 best = infinity, index = zero;
@@ -245,8 +243,8 @@ bool ProductKernel::PlainVertexFactors(const double p[3], double* f, double (*g)
 }
 
 PISURF_AVX2_CLONES
-void ProductKernel::EvaluateVertices(int count, const double (*p)[3], double (*normal)[3],
-  double* gradientNorm, int* nearest) const
+void ProductKernel::EvaluateVertices(
+  int count, const double (*p)[3], double (*normal)[3], double* gradientNorm, int* nearest) const
 {
   const size_t factors = this->Factors.size();
   if (!this->AllPolynomial || factors == 0 || factors > MaxPlainVertex || count > MaxVertices)
@@ -379,8 +377,10 @@ void ProductKernel::FinishPlainVertex(const double* f, const double (*g)[3], dou
     // ScaledProduct rescales only a factor or a partial product whose largest magnitude
     // (of value and gradient) is finite, non-zero and outside [Small, Big]; where none
     // is, its operations are exactly these plain ones.
-    auto keeps = [](double v, const double w[3]) {
-      const double a = std::max({ std::fabs(v), std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
+    auto keeps = [](double v, const double w[3])
+    {
+      const double a =
+        std::max({ std::fabs(v), std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
       return (a >= Small && a <= Big) || a == 0.0 || !std::isfinite(a);
     };
     bool unscaled = true;
@@ -637,8 +637,8 @@ __attribute__((always_inline)) static inline bool RegularFromBounds(double produ
   const double unit = std::numeric_limits<double>::epsilon();
   const double rounding = 4.0 * (static_cast<double>(count) + 2.0) * unit;
   const double F = product - blending;
-  const double U = (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) *
-    (1.0 + 1e-10);
+  const double U =
+    (std::fabs(F) + largest + rounding * (absProduct + magnitude + 2.0 * r)) * (1.0 + 1e-10);
   return std::isfinite(U) && std::isnormal(gradientNorm) && gradientNorm * h > tolerance * U;
 }
 
@@ -695,7 +695,8 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
   int* nearest, bool* regular) const
 {
   const size_t factors = this->Factors.size();
-  auto onePointAtATime = [&]() {
+  auto onePointAtATime = [&]()
+  {
     for (int j = 0; j < count; ++j)
     {
       regular[j] = this->EvaluateVertexIfRegular(
@@ -761,8 +762,8 @@ void ProductKernel::EvaluateVerticesIfRegular(int count, const double (*p)[3],
     const double tj[3] = { t[0][j], t[1][j], t[2][j] };
     const double grownj[3] = { grown[0][j], grown[1][j], grown[2][j] };
     regular[j] = inside[j] && plain.Plain(j) &&
-      RegularFromBounds(product[j], tj, grownj, factors, this->Blending, gradientNorm[j],
-        bounds.Probe, tolerance);
+      RegularFromBounds(
+        product[j], tj, grownj, factors, this->Blending, gradientNorm[j], bounds.Probe, tolerance);
   }
 }
 

@@ -17,16 +17,15 @@ namespace
 {
 // PASS 1: interval bounds of F over each block still undecided.
 //
-// With `Corners` (a field with the product's fast paths), a block whose corners (grid points) have F of both
-// signs, or 0 at one, holds the surface: it is active without its enclosures, which
-// could not have decided it either (the same active blocks). Each corner is evaluated
-// once, by whichever block asks first (`Corners` starts at Unknown; two threads that
-// ask at once store the same sign).
+// With `Corners` (a field with the product's fast paths), a block whose corners (grid points) have
+// F of both signs, or 0 at one, holds the surface: it is active without its enclosures, which could
+// not have decided it either (the same active blocks). Each corner is evaluated once, by whichever
+// block asks first (`Corners` starts at Unknown; two threads that ask at once store the same sign).
 struct ClassifyBlocks
 {
   const Field* F;
   BlockGrid* G;
-  const std::vector<vtkIdType>* Blocks; // the blocks to classify
+  const std::vector<vtkIdType>* Blocks;        // the blocks to classify
   std::atomic<signed char>* Corners = nullptr; // per corner of the block lattice
   static constexpr signed char Unknown = 2;
 
@@ -125,7 +124,8 @@ void BlockClassifier::ClassifyGroups(
   }
   const vtkIdType groupCount = vtkIdType(groups[0]) * groups[1] * groups[2];
   // The blocks [lo, hi) take `sign`.
-  auto setSigns = [&g](const int lo[3], const int hi[3], int sign) {
+  auto setSigns = [&g](const int lo[3], const int hi[3], int sign)
+  {
     for (int z = lo[2]; z < hi[2]; ++z)
       for (int y = lo[1]; y < hi[1]; ++y)
         for (int x = lo[0]; x < hi[0]; ++x)
@@ -134,7 +134,8 @@ void BlockClassifier::ClassifyGroups(
         }
   };
   // Whether `inner` lies within octant o of `outer` (as OctantBox cuts it).
-  auto insideOctant = [](const double inner[6], const double outer[6], int o) {
+  auto insideOctant = [](const double inner[6], const double outer[6], int o)
+  {
     double octant[6];
     pisurf::OctantBox(outer, o, octant);
     for (int a = 0; a < 3; ++a)
@@ -146,97 +147,97 @@ void BlockClassifier::ClassifyGroups(
     }
     return true;
   };
-  pisurf::ParallelFor(0, groupCount, 1, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType q = begin; q < end; ++q)
+  pisurf::ParallelFor(0, groupCount, 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
-        int(q / (vtkIdType(groups[0]) * groups[1])) };
-      if (c[2] * group >= classifyEnd || c[2] * group + group <= classifyBegin)
+      for (vtkIdType q = begin; q < end; ++q)
       {
-        continue; // no layer of this piece's (marked absent below)
-      }
-      int lo[3], hi[3];
-      double box[6];
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = c[a] * group;
-        hi[a] = std::min(lo[a] + group, g.Count[a]); // blocks [lo, hi)
-        box[2 * a] = g.Origin[a] + lo[a] * BlockCells * g.Spacing[a];
-        box[2 * a + 1] =
-          g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
-      }
-      int groupOctants[8];
-      const int sign = octantsToo ? kernel->ClassifyBoxAndOctants(box, groupOctants, true)
-                                  : field.ClassifyBox(box);
-      setSigns(lo, hi, sign == 0 ? 2 : sign);
-      if (sign != 0)
-      {
-        continue;
-      }
-      // An undecided group: its eight sub-groups of 2³ blocks, whose tighter
-      // enclosures decide many more blocks at once.
-      for (int o = 0; o < 8; ++o)
-      {
-        int sublo[3], subhi[3];
-        double sub[6];
+        const int c[3] = { int(q % groups[0]), int((q / groups[0]) % groups[1]),
+          int(q / (vtkIdType(groups[0]) * groups[1])) };
+        if (c[2] * group >= classifyEnd || c[2] * group + group <= classifyBegin)
+        {
+          continue; // no layer of this piece's (marked absent below)
+        }
+        int lo[3], hi[3];
+        double box[6];
         for (int a = 0; a < 3; ++a)
         {
-          sublo[a] = lo[a] + ((o >> a) & 1) * (group / 2);
-          subhi[a] = std::min(sublo[a] + group / 2, hi[a]);
-          sub[2 * a] = g.Origin[a] + sublo[a] * BlockCells * g.Spacing[a];
-          sub[2 * a + 1] =
-            g.Origin[a] + std::min(subhi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
+          lo[a] = c[a] * group;
+          hi[a] = std::min(lo[a] + group, g.Count[a]); // blocks [lo, hi)
+          box[2 * a] = g.Origin[a] + lo[a] * BlockCells * g.Spacing[a];
+          box[2 * a + 1] = g.Origin[a] + std::min(hi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
         }
-        if (sublo[0] >= subhi[0] || sublo[1] >= subhi[1] || sublo[2] >= subhi[2])
+        int groupOctants[8];
+        const int sign = octantsToo ? kernel->ClassifyBoxAndOctants(box, groupOctants, true)
+                                    : field.ClassifyBox(box);
+        setSigns(lo, hi, sign == 0 ? 2 : sign);
+        if (sign != 0)
         {
           continue;
         }
-        if (octantsToo && groupOctants[o] != 0 && insideOctant(sub, box, o))
+        // An undecided group: its eight sub-groups of 2³ blocks, whose tighter
+        // enclosures decide many more blocks at once.
+        for (int o = 0; o < 8; ++o)
         {
-          setSigns(sublo, subhi, groupOctants[o]);
-          continue;
-        }
-        int subOctants[8];
-        const int subSign = octantsToo ? kernel->ClassifyBoxAndOctants(sub, subOctants, true)
-                                       : field.ClassifyBox(sub);
-        if (subSign != 0)
-        {
-          setSigns(sublo, subhi, subSign);
-          continue;
-        }
-        // (Likewise the sub-group's octants: an octant that holds exactly one block
-        // decides that block, which then skips its own classification below.)
-        for (int so = 0; octantsToo && so < 8; ++so)
-        {
-          int bc[3];
+          int sublo[3], subhi[3];
+          double sub[6];
           for (int a = 0; a < 3; ++a)
           {
-            bc[a] = sublo[a] + ((so >> a) & 1);
+            sublo[a] = lo[a] + ((o >> a) & 1) * (group / 2);
+            subhi[a] = std::min(sublo[a] + group / 2, hi[a]);
+            sub[2 * a] = g.Origin[a] + sublo[a] * BlockCells * g.Spacing[a];
+            sub[2 * a + 1] =
+              g.Origin[a] + std::min(subhi[a] * BlockCells, g.Dims[a] - 1) * g.Spacing[a];
           }
-          if (subOctants[so] == 0 || bc[0] >= subhi[0] || bc[1] >= subhi[1] ||
-            bc[2] >= subhi[2])
+          if (sublo[0] >= subhi[0] || sublo[1] >= subhi[1] || sublo[2] >= subhi[2])
           {
             continue;
           }
-          // The block's box as ClassifyBlocks forms it.
-          double block[6];
-          for (int a = 0; a < 3; ++a)
+          if (octantsToo && groupOctants[o] != 0 && insideOctant(sub, box, o))
           {
-            block[2 * a] = g.Origin[a] + g.First(bc, a) * g.Spacing[a];
-            block[2 * a + 1] = g.Origin[a] + g.Last(bc, a) * g.Spacing[a];
+            setSigns(sublo, subhi, groupOctants[o]);
+            continue;
           }
-          if (insideOctant(block, sub, so))
+          int subOctants[8];
+          const int subSign = octantsToo ? kernel->ClassifyBoxAndOctants(sub, subOctants, true)
+                                         : field.ClassifyBox(sub);
+          if (subSign != 0)
           {
-            g.Sign[g.BlockId(bc[0], bc[1], bc[2])] = static_cast<signed char>(subOctants[so]);
+            setSigns(sublo, subhi, subSign);
+            continue;
+          }
+          // (Likewise the sub-group's octants: an octant that holds exactly one block
+          // decides that block, which then skips its own classification below.)
+          for (int so = 0; octantsToo && so < 8; ++so)
+          {
+            int bc[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              bc[a] = sublo[a] + ((so >> a) & 1);
+            }
+            if (subOctants[so] == 0 || bc[0] >= subhi[0] || bc[1] >= subhi[1] || bc[2] >= subhi[2])
+            {
+              continue;
+            }
+            // The block's box as ClassifyBlocks forms it.
+            double block[6];
+            for (int a = 0; a < 3; ++a)
+            {
+              block[2 * a] = g.Origin[a] + g.First(bc, a) * g.Spacing[a];
+              block[2 * a + 1] = g.Origin[a] + g.Last(bc, a) * g.Spacing[a];
+            }
+            if (insideOctant(block, sub, so))
+            {
+              g.Sign[g.BlockId(bc[0], bc[1], bc[2])] = static_cast<signed char>(subOctants[so]);
+            }
           }
         }
       }
-    }
-  });
+    });
 }
 
-size_t BlockClassifier::Run(const Field& field, BlockGrid& g, int classifyBegin,
-  int classifyEnd, int sampleBegin, bool slabOnly)
+size_t BlockClassifier::Run(const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd,
+  int sampleBegin, bool slabOnly)
 {
   BlockClassifier::ClassifyGroups(field, g, classifyBegin, classifyEnd);
   if (slabOnly)

@@ -21,13 +21,12 @@ public:
   /// Returns how many blocks their groups left undecided. With the field's product fast
   /// paths (Field::GetProductKernel), the groups' octants come from the same expansions
   /// and blocks whose corners differ in sign skip their enclosures.
-  static size_t Run(const Field& field, BlockGrid& g, int classifyBegin,
-    int classifyEnd, int sampleBegin, bool slabOnly);
+  static size_t Run(const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd,
+    int sampleBegin, bool slabOnly);
 
 private:
   // Groups of 4³ blocks and their quarters; blocks still undecided get the sign 2.
-  static void ClassifyGroups(
-    const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd);
+  static void ClassifyGroups(const Field& field, BlockGrid& g, int classifyBegin, int classifyEnd);
 };
 }
 

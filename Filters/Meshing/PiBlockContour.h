@@ -81,9 +81,15 @@ struct BlockContour
     } table{};
     return table.Of[mask & 0xffu];
   }
-  static int EdgeRow(int axis, int lk, int lj) { return (axis * BlockCells + lk) * BlockCells + lj; }
+  static int EdgeRow(int axis, int lk, int lj)
+  {
+    return (axis * BlockCells + lk) * BlockCells + lj;
+  }
   // Where Write keeps the id of the owned edge at local lower end (li, lj, lk) on `axis`.
-  static int OwnedSlot(int axis, int li, int lj, int lk) { return EdgeRow(axis, lk, lj) * BlockCells + li; }
+  static int OwnedSlot(int axis, int li, int lj, int lk)
+  {
+    return EdgeRow(axis, lk, lj) * BlockCells + li;
+  }
 
   // The vertex id of the crossing edge its block `slot` owns at local lower end
   // (li, lj, lk), each in 0..7: the block's first id, the row's offset and the
@@ -143,8 +149,8 @@ struct BlockContour
   }
 
   // Count: the block's row signs, then its owned crossing edges, numbered in key order.
-  void CountBlock(vtkIdType s, const double* v, const int n[3], const int h[3],
-    std::uint16_t* rows, std::uint8_t* masks, std::uint16_t* offsets) const
+  void CountBlock(vtkIdType s, const double* v, const int n[3], const int h[3], std::uint16_t* rows,
+    std::uint8_t* masks, std::uint16_t* offsets) const
   {
     // The signs the contouring sees, once per point of the block.
     for (int lk = 0; lk <= n[2]; ++lk)
@@ -236,8 +242,8 @@ struct BlockContour
             // Both ends of one sign (the envelope gave one the other sign): start at
             // the end whose sign is its own; Refine looks for the surface nearest to
             // it along the edge.
-            const double t = !(own0 && own1) ? (own0 ? 0.0 : 1.0)
-                                            : (v0 == v1 ? 0.5 : v0 / (v0 - v1));
+            const double t =
+              !(own0 && own1) ? (own0 ? 0.0 : 1.0) : (v0 == v1 ? 0.5 : v0 / (v0 - v1));
             (*this->VertexT)[vertex] = std::max(0.0, std::min(1.0, t));
             (*this->VertexEnds)[2 * vertex] = v0;
             (*this->VertexEnds)[2 * vertex + 1] = v1;

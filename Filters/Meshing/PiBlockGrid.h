@@ -78,7 +78,7 @@ struct BlockGrid
   std::vector<signed char> Sign; // per block: +1/−1 skipped with that sign, 0 active
   std::vector<int> Active;       // active block ids
   std::vector<int> Slot;         // per block: index in Active, or −1
-  double* Values = nullptr; // per active block: BlockPoints³ values of F (not owned)
+  double* Values = nullptr;      // per active block: BlockPoints³ values of F (not owned)
 
   vtkIdType BlockId(int bx, int by, int bz) const
   {

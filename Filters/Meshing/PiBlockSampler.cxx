@@ -65,11 +65,11 @@ struct SampleBlocks
       {
         for (int j = this->G->First(c, 1); j <= this->G->Last(c, 1); ++j)
         {
-          const double* coefficients = this->Kernel
-            ? this->Coefficients->data() + (*this->RowIndex)[vtkIdType(k) * this->G->Dims[1] + j] * n
-            : nullptr;
-          double* out = v + size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) *
-              BlockPoints;
+          const double* coefficients = this->Kernel ? this->Coefficients->data() +
+              (*this->RowIndex)[vtkIdType(k) * this->G->Dims[1] + j] * n
+                                                    : nullptr;
+          double* out = v +
+            size_t((k - c[2] * BlockCells) * BlockPoints + (j - c[1] * BlockCells)) * BlockPoints;
           const int first = this->G->First(c, 0), last = this->G->Last(c, 0);
           if (this->Kernel && this->Kernel->IsPolynomial())
           {
@@ -213,8 +213,7 @@ struct SampleRows
             {
               continue;
             }
-            double* out = this->G->Values +
-              size_t(slot) * BlockPoints * BlockPoints * BlockPoints +
+            double* out = this->G->Values + size_t(slot) * BlockPoints * BlockPoints * BlockPoints +
               size_t((k - zs[b] * BlockCells) * BlockPoints + (j - ys[a] * BlockCells)) *
                 BlockPoints;
             // (A block row: at most 9 values, copied inline rather than by a call.)

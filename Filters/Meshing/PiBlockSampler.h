@@ -24,9 +24,8 @@ public:
   /// which g.Values then points to: from pass 2's row restrictions `rows` where the
   /// field has the product's fast paths, else box by box (Field::EvaluateBox) or point
   /// by point. The single thread checks `algorithm` for a cancel and sets `abort`.
-  static void Run(const Field& field, BlockGrid& g,
-    const RowRestriction& rows, Buffer<double>& values, vtkAlgorithm* algorithm,
-    std::atomic<bool>& abort);
+  static void Run(const Field& field, BlockGrid& g, const RowRestriction& rows,
+    Buffer<double>& values, vtkAlgorithm* algorithm, std::atomic<bool>& abort);
 };
 }
 

@@ -34,8 +34,8 @@ MeshingDriver::MeshingDriver(vtkAlgorithm* algorithm, MeshingWork& work, pisurf:
 
 MeshingDriver::~MeshingDriver() = default;
 
-MeshingDriver::Result MeshingDriver::Run(const Field& field, BlockGrid& g,
-  int piece, int pieces, const Settings& settings, vtkPolyData* output)
+MeshingDriver::Result MeshingDriver::Run(const Field& field, BlockGrid& g, int piece, int pieces,
+  const Settings& settings, vtkPolyData* output)
 {
   this->TheField = &field;
   this->G = &g;
@@ -115,8 +115,8 @@ MeshingDriver::Result MeshingDriver::Sample()
   lap("classify");
   if (lap.IsEnabled())
   {
-    std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active ("
-              << undecided << " left undecided by their groups)\n";
+    std::cerr << g.Active.size() << " of " << g.Sign.size() << " blocks active (" << undecided
+              << " left undecided by their groups)\n";
   }
 
   // PASS 2: restrict the factors to the rows the active blocks need.
@@ -129,10 +129,9 @@ MeshingDriver::Result MeshingDriver::Sample()
   {
     const vtkIdType maximum = this->Options.MaximumNumberOfSamples;
     vtkErrorWithObjectMacro(algorithm,
-      << "The " << kernel->GetNumberOfFactors() << " factors restricted to the "
-      << rows.Rows.size() << " grid rows the surface may cross need "
-      << count * sizeof(double) / (1 << 20) << " MiB; the limit is "
-      << maximum * sizeof(double) / (1 << 20)
+      << "The " << kernel->GetNumberOfFactors() << " factors restricted to the " << rows.Rows.size()
+      << " grid rows the surface may cross need " << count * sizeof(double) / (1 << 20)
+      << " MiB; the limit is " << maximum * sizeof(double) / (1 << 20)
       << " MiB (MaximumNumberOfSamples doubles): lower the Resolution or the "
          "number of primitives");
     // (A distributed piece over the cap skips its sampling, then tells the other pieces
@@ -159,9 +158,9 @@ MeshingDriver::Result MeshingDriver::Sample()
     stop = this->Exchange->Maximum(mine);
     if (stop == 2 && mine != 2)
     {
-      vtkErrorWithObjectMacro(algorithm,
-        << "Another piece of the mesh failed (see its error): piece " << this->Slab.Piece
-        << " of " << this->Slab.Pieces << " stops too");
+      vtkErrorWithObjectMacro(
+        algorithm, << "Another piece of the mesh failed (see its error): piece " << this->Slab.Piece
+                   << " of " << this->Slab.Pieces << " stops too");
     }
   }
   return stop == 0 ? Meshed : (stop == 2 ? Failed : Cancelled);
@@ -174,8 +173,8 @@ std::unique_ptr<OuterEnvelope> MeshingDriver::Envelope()
   {
     return nullptr;
   }
-  return OuterEnvelope::Build(*this->G, this->Slab, *this->TheField,
-    this->Exchange.get(), this->Work.EnvelopeFree, this->Work.EnvelopeReached, this->Lap);
+  return OuterEnvelope::Build(*this->G, this->Slab, *this->TheField, this->Exchange.get(),
+    this->Work.EnvelopeFree, this->Work.EnvelopeReached, this->Lap);
 }
 
 MeshingDriver::Result MeshingDriver::PlaceVertices(

@@ -52,8 +52,8 @@ public:
   /// Meshes `field` on g (Dims, Origin, Spacing and Count set) for piece `piece` of
   /// `pieces` into `output`'s points, triangles and point data. The passes take the
   /// field's product fast paths (Field::GetProductKernel) where it has them.
-  Result Run(const Field& field, BlockGrid& g, int piece, int pieces,
-    const Settings& settings, vtkPolyData* output);
+  Result Run(const Field& field, BlockGrid& g, int piece, int pieces, const Settings& settings,
+    vtkPolyData* output);
 
   /// The vertices of the last mesh.
   vtkIdType GetNumberOfVertices() const { return this->Vertices; }

@@ -22,8 +22,8 @@ struct MeshingWork
   // The envelope's and the contouring's work arrays (per active block: free and reached
   // points, row signs, crossing-edge masks and offsets; per vertex: edge key, crossing
   // parameter, end values), kept between executions below WorkLimit bytes in all: a
-  // re-execution then writes memory that is already mapped (at 256³ the cup's contouring faulted ~20 MB in each time, a tenth
-  // of its time with two threads). Larger ones are released after use.
+  // re-execution then writes memory that is already mapped (at 256³ the cup's contouring faulted
+  // ~20 MB in each time, a tenth of its time with two threads). Larger ones are released after use.
   Buffer<vtkIdType> VertexEdge;
   Buffer<double> VertexT, VertexEnds;
   Buffer<std::uint16_t> RowSigns, EdgeOffsets;
@@ -35,7 +35,8 @@ struct MeshingWork
     const size_t bytes = this->VertexEdge.GetSize() * sizeof(vtkIdType) +
       (this->VertexT.GetSize() + this->VertexEnds.GetSize()) * sizeof(double) +
       (this->RowSigns.GetSize() + this->EdgeOffsets.GetSize() + this->EnvelopeFree.GetSize() +
-        this->EnvelopeReached.GetSize()) * sizeof(std::uint16_t) +
+        this->EnvelopeReached.GetSize()) *
+        sizeof(std::uint16_t) +
       this->EdgeMasks.GetSize();
     if (bytes > WorkLimit)
     {

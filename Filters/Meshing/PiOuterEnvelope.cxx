@@ -63,9 +63,8 @@ std::unique_ptr<OuterEnvelope> OuterEnvelope::Build(const BlockGrid& g, const Pi
 {
   const bool distributed = exchange != nullptr;
   const int slabBegin = slab.SlabBegin, slabEnd = slab.SlabEnd;
-  std::unique_ptr<OuterEnvelope> envelope(
-    new OuterEnvelope(g, OutsideSign(g, slab, exchange),
-      field.HasOffOuterSide() ? &field : nullptr, free, reached));
+  std::unique_ptr<OuterEnvelope> envelope(new OuterEnvelope(
+    g, OutsideSign(g, slab, exchange), field.HasOffOuterSide() ? &field : nullptr, free, reached));
   lap("envelope states");
   if (distributed)
   {
@@ -79,8 +78,7 @@ std::unique_ptr<OuterEnvelope> OuterEnvelope::Build(const BlockGrid& g, const Pi
     {
       std::cerr << "piece " << slab.Piece << " of " << slab.Pieces << ": block layers " << slabBegin
                 << " to " << slabEnd - 1 << " of " << g.Count[2]
-                << ", the envelope flooded with the other pieces in " << rounds
-                << " rounds\n";
+                << ", the envelope flooded with the other pieces in " << rounds << " rounds\n";
     }
     if (slabBegin < slabEnd && slabEnd < g.Count[2])
     {
@@ -106,109 +104,115 @@ OuterEnvelope::OuterEnvelope(const BlockGrid& g, int outside, const pisurf::Fiel
   // block is in the component of its centre): those count as the other sign.
   char* blockState = this->BlockState.data();
   const BlockGrid* grid = &this->G;
-  pisurf::ParallelFor(0, static_cast<vtkIdType>(g.Sign.size()), 0, [=](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType b = begin; b < end; ++b)
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(g.Sign.size()), 0,
+    [=](vtkIdType begin, vtkIdType end)
     {
-      if (grid->Sign[b] != outside)
+      for (vtkIdType b = begin; b < end; ++b)
       {
-        continue;
-      }
-      bool free = true;
-      if (field && outside > 0)
-      {
-        int c[3];
-        grid->BlockCoordinates(b, c);
-        double centre[3];
-        for (int a = 0; a < 3; ++a)
+        if (grid->Sign[b] != outside)
         {
-          centre[a] = grid->Origin[a] +
-            0.5 * (grid->First(c, a) + grid->Last(c, a)) * grid->Spacing[a];
+          continue;
         }
-        free = !field->OffOuterSide(centre);
+        bool free = true;
+        if (field && outside > 0)
+        {
+          int c[3];
+          grid->BlockCoordinates(b, c);
+          double centre[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            centre[a] =
+              grid->Origin[a] + 0.5 * (grid->First(c, a) + grid->Last(c, a)) * grid->Spacing[a];
+          }
+          free = !field->OffOuterSide(centre);
+        }
+        blockState[b] = free ? FreeBlock : 0;
       }
-      blockState[b] = free ? FreeBlock : 0;
-    }
-  });
+    });
   // The free points of the active blocks: the outside sign (and, for a field, not off
   // the outer side); points shared with a skipped block take that block's verdict.
   std::uint16_t* freeRows = this->Free.GetPointer();
   std::uint16_t* reachedRows = this->Reached.GetPointer();
-  pisurf::ParallelFor(0, static_cast<vtkIdType>(active), 0, [=](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType s = begin; s < end; ++s)
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(active), 0,
+    [=](vtkIdType begin, vtkIdType end)
     {
-      int c[3];
-      grid->BlockCoordinates(grid->Active[s], c);
-      int first[3], last[3], n[3];
-      grid->Range(c, first, last);
-      grid->CellCounts(c, n);
-      const double* v = grid->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
-      unsigned char off[BlockPoints * BlockPoints * BlockPoints];
-      const bool checkField = field && outside > 0;
-      const bool boxed = checkField &&
-        field->OffOuterSideBox(grid->Origin, grid->Spacing, first, last, BlockPoints,
-          BlockPoints * BlockPoints, off);
-      std::uint16_t* fr = freeRows + size_t(s) * Rows;
-      std::fill(reachedRows + size_t(s) * Rows, reachedRows + size_t(s + 1) * Rows, 0);
-      for (int lk = 0; lk <= n[2]; ++lk)
-        for (int lj = 0; lj <= n[1]; ++lj)
-        {
-          const int q = (lk * BlockPoints + lj) * BlockPoints;
-          unsigned bits = 0;
-          if (!checkField)
-          {
-            // The sign alone, without the field's branches in the loop.
-            bits = SignBits(v + q, n[0] + 1);
-            fr[lk * BlockPoints + lj] =
-              static_cast<std::uint16_t>(outside > 0 ? bits : ~bits & ((2u << n[0]) - 1u));
-            continue;
-          }
-          for (int li = 0; li <= n[0]; ++li)
-          {
-            bool free = (v[q + li] >= 0) == (outside > 0);
-            if (free && checkField)
-            {
-              if (boxed)
-              {
-                free = !off[q + li];
-              }
-              else
-              {
-                const double p[3] = { grid->Origin[0] + (first[0] + li) * grid->Spacing[0],
-                  grid->Origin[1] + (first[1] + lj) * grid->Spacing[1],
-                  grid->Origin[2] + (first[2] + lk) * grid->Spacing[2] };
-                free = !field->OffOuterSide(p);
-              }
-            }
-            bits |= unsigned(free) << li;
-          }
-          fr[lk * BlockPoints + lj] = static_cast<std::uint16_t>(bits);
-        }
-      // Skipped neighbours (all 26) decide their shared points: free where they are
-      // free blocks, not free otherwise (clearing wins).
-      for (int pass = 0; pass < 2; ++pass)
+      for (vtkIdType s = begin; s < end; ++s)
       {
-        grid->ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
-          if (grid->Sign[nb] == 0 || grid->Sign[nb] == AbsentBlock ||
-            (blockState[nb] == FreeBlock) != (pass == 0))
+        int c[3];
+        grid->BlockCoordinates(grid->Active[s], c);
+        int first[3], last[3], n[3];
+        grid->Range(c, first, last);
+        grid->CellCounts(c, n);
+        const double* v = grid->Values + size_t(s) * BlockPoints * BlockPoints * BlockPoints;
+        unsigned char off[BlockPoints * BlockPoints * BlockPoints];
+        const bool checkField = field && outside > 0;
+        const bool boxed = checkField &&
+          field->OffOuterSideBox(
+            grid->Origin, grid->Spacing, first, last, BlockPoints, BlockPoints * BlockPoints, off);
+        std::uint16_t* fr = freeRows + size_t(s) * Rows;
+        std::fill(reachedRows + size_t(s) * Rows, reachedRows + size_t(s + 1) * Rows, 0);
+        for (int lk = 0; lk <= n[2]; ++lk)
+          for (int lj = 0; lj <= n[1]; ++lj)
           {
-            return;
-          }
-          int lo[3], hi[3];
-          for (int a = 0; a < 3; ++a)
-          {
-            SharedPoints(d[a], n[a], lo[a], hi[a]);
-          }
-          const unsigned xs = PointMask(lo[0], hi[0]);
-          for (int lk = lo[2]; lk <= hi[2]; ++lk)
-            for (int lj = lo[1]; lj <= hi[1]; ++lj)
+            const int q = (lk * BlockPoints + lj) * BlockPoints;
+            unsigned bits = 0;
+            if (!checkField)
             {
-              std::uint16_t& row = fr[lk * BlockPoints + lj];
-              row = static_cast<std::uint16_t>(pass == 0 ? row | xs : row & ~xs);
+              // The sign alone, without the field's branches in the loop.
+              bits = SignBits(v + q, n[0] + 1);
+              fr[lk * BlockPoints + lj] =
+                static_cast<std::uint16_t>(outside > 0 ? bits : ~bits & ((2u << n[0]) - 1u));
+              continue;
             }
-        });
+            for (int li = 0; li <= n[0]; ++li)
+            {
+              bool free = (v[q + li] >= 0) == (outside > 0);
+              if (free && checkField)
+              {
+                if (boxed)
+                {
+                  free = !off[q + li];
+                }
+                else
+                {
+                  const double p[3] = { grid->Origin[0] + (first[0] + li) * grid->Spacing[0],
+                    grid->Origin[1] + (first[1] + lj) * grid->Spacing[1],
+                    grid->Origin[2] + (first[2] + lk) * grid->Spacing[2] };
+                  free = !field->OffOuterSide(p);
+                }
+              }
+              bits |= unsigned(free) << li;
+            }
+            fr[lk * BlockPoints + lj] = static_cast<std::uint16_t>(bits);
+          }
+        // Skipped neighbours (all 26) decide their shared points: free where they are
+        // free blocks, not free otherwise (clearing wins).
+        for (int pass = 0; pass < 2; ++pass)
+        {
+          grid->ForEachNeighbour(c,
+            [&](vtkIdType nb, const int d[3])
+            {
+              if (grid->Sign[nb] == 0 || grid->Sign[nb] == AbsentBlock ||
+                (blockState[nb] == FreeBlock) != (pass == 0))
+              {
+                return;
+              }
+              int lo[3], hi[3];
+              for (int a = 0; a < 3; ++a)
+              {
+                SharedPoints(d[a], n[a], lo[a], hi[a]);
+              }
+              const unsigned xs = PointMask(lo[0], hi[0]);
+              for (int lk = lo[2]; lk <= hi[2]; ++lk)
+                for (int lj = lo[1]; lj <= hi[1]; ++lj)
+                {
+                  std::uint16_t& row = fr[lk * BlockPoints + lj];
+                  row = static_cast<std::uint16_t>(pass == 0 ? row | xs : row & ~xs);
+                }
+            });
+        }
       }
-    }
-  });
+    });
 }
 
 void OuterEnvelope::Flood()
@@ -315,18 +319,20 @@ void OuterEnvelope::CopyTopPlaneTo(int ghost)
   std::vector<unsigned char> plane;
   this->ReadPlane(this->FloodEnd - 1, true, plane);
   const BlockGrid& g = this->G;
-  this->ForEachBlockOfLayer(ghost, [&](vtkIdType b, const int c[3], const int n[3]) {
-    if (g.Sign[b] != 0 || g.Slot[b] < 0)
+  this->ForEachBlockOfLayer(ghost,
+    [&](vtkIdType b, const int c[3], const int n[3])
     {
-      return;
-    }
-    const size_t base = size_t(g.Slot[b]) * Rows;
-    for (int lj = 0; lj <= n[1]; ++lj)
-    {
-      this->Reached.GetPointer()[base + lj] = static_cast<std::uint16_t>(
-        this->PlaneRow(plane, c, lj, n[0]) & this->Free.GetPointer()[base + lj]);
-    }
-  });
+      if (g.Sign[b] != 0 || g.Slot[b] < 0)
+      {
+        return;
+      }
+      const size_t base = size_t(g.Slot[b]) * Rows;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        this->Reached.GetPointer()[base + lj] = static_cast<std::uint16_t>(
+          this->PlaneRow(plane, c, lj, n[0]) & this->Free.GetPointer()[base + lj]);
+      }
+    });
 }
 
 void OuterEnvelope::Run(std::vector<vtkIdType>& frontier)
@@ -342,7 +348,8 @@ void OuterEnvelope::Run(std::vector<vtkIdType>& frontier)
     OuterEnvelope* self = this;
     const std::vector<vtkIdType>* blocks = &frontier;
     pisurf::ParallelFor(0, static_cast<vtkIdType>(frontier.size()), 8,
-      [self, blocks, &next](vtkIdType begin, vtkIdType end) {
+      [self, blocks, &next](vtkIdType begin, vtkIdType end)
+      {
         std::vector<vtkIdType>& stack = next.Local();
         Pusher push{ self, &stack };
         for (vtkIdType m = begin; m < end; ++m)
@@ -375,25 +382,27 @@ void OuterEnvelope::ReadPlane(int layer, bool topPlane, std::vector<unsigned cha
 {
   const BlockGrid& g = this->G;
   plane.assign(size_t(g.Dims[0]) * g.Dims[1], 0);
-  this->ForEachBlockOfLayer(layer, [&](vtkIdType b, const int c[3], const int n[3]) {
-    const bool active = g.Sign[b] == 0;
-    if (!active && this->BlockState[b] != ReachedBlock)
+  this->ForEachBlockOfLayer(layer,
+    [&](vtkIdType b, const int c[3], const int n[3])
     {
-      return;
-    }
-    const std::uint16_t* rr =
-      active ? this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows : nullptr;
-    const int lk = topPlane ? n[2] : 0;
-    for (int lj = 0; lj <= n[1]; ++lj)
-    {
-      const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
-      unsigned char* out = plane.data() + this->PlaneOffset(c, lj);
-      for (int li = 0; li <= n[0]; ++li)
+      const bool active = g.Sign[b] == 0;
+      if (!active && this->BlockState[b] != ReachedBlock)
       {
-        out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
+        return;
       }
-    }
-  });
+      const std::uint16_t* rr =
+        active ? this->Reached.GetPointer() + size_t(g.Slot[b]) * Rows : nullptr;
+      const int lk = topPlane ? n[2] : 0;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        const unsigned bits = active ? LoadRow(rr + lk * BlockPoints + lj) : 0x1ffu;
+        unsigned char* out = plane.data() + this->PlaneOffset(c, lj);
+        for (int li = 0; li <= n[0]; ++li)
+        {
+          out[li] |= static_cast<unsigned char>((bits >> li) & 1u);
+        }
+      }
+    });
 }
 
 void OuterEnvelope::SeedPlane(int layer, bool topPlane, const std::vector<unsigned char>& plane,
@@ -401,35 +410,37 @@ void OuterEnvelope::SeedPlane(int layer, bool topPlane, const std::vector<unsign
 {
   const BlockGrid& g = this->G;
   Pusher push{ this, &frontier };
-  this->ForEachBlockOfLayer(layer, [&](vtkIdType b, const int c[3], const int n[3]) {
-    const bool active = g.Sign[b] == 0;
-    if (!active && this->BlockState[b] != FreeBlock)
+  this->ForEachBlockOfLayer(layer,
+    [&](vtkIdType b, const int c[3], const int n[3])
     {
-      return;
-    }
-    const size_t base = active ? size_t(g.Slot[b]) * Rows : 0;
-    const int lk = topPlane ? n[2] : 0;
-    bool added = false, any = false;
-    for (int lj = 0; lj <= n[1]; ++lj)
-    {
-      const unsigned bits = this->PlaneRow(plane, c, lj, n[0]);
-      any = any || bits != 0;
-      if (active && bits)
+      const bool active = g.Sign[b] == 0;
+      if (!active && this->BlockState[b] != FreeBlock)
       {
-        std::uint16_t* row = this->Reached.GetPointer() + base + lk * BlockPoints + lj;
-        const unsigned add =
-          bits & this->Free.GetPointer()[base + lk * BlockPoints + lj] & ~LoadRow(row);
-        added = (add && AddToRow(row, add)) || added;
+        return;
       }
-    }
-    if (active && added)
-    {
-      push.Push(b);
-    }
-    else if (!active && any)
-    {
-      this->ReachSkipped(b, push);
-    }
-  });
+      const size_t base = active ? size_t(g.Slot[b]) * Rows : 0;
+      const int lk = topPlane ? n[2] : 0;
+      bool added = false, any = false;
+      for (int lj = 0; lj <= n[1]; ++lj)
+      {
+        const unsigned bits = this->PlaneRow(plane, c, lj, n[0]);
+        any = any || bits != 0;
+        if (active && bits)
+        {
+          std::uint16_t* row = this->Reached.GetPointer() + base + lk * BlockPoints + lj;
+          const unsigned add =
+            bits & this->Free.GetPointer()[base + lk * BlockPoints + lj] & ~LoadRow(row);
+          added = (add && AddToRow(row, add)) || added;
+        }
+      }
+      if (active && added)
+      {
+        push.Push(b);
+      }
+      else if (!active && any)
+      {
+        this->ReachSkipped(b, push);
+      }
+    });
 }
 }

@@ -172,13 +172,13 @@ private:
     hi = d < 0 ? 0 : n;
   }
   // The bits lo..hi of a row mask.
-  static unsigned PointMask(int lo, int hi)
-  {
-    return ((1u << (hi + 1)) - 1u) & ~((1u << lo) - 1u);
-  }
+  static unsigned PointMask(int lo, int hi) { return ((1u << (hi + 1)) - 1u) & ~((1u << lo) - 1u); }
 
   // A row of reached bits, read and grown atomically (Flood's rounds are parallel).
-  static unsigned LoadRow(const std::uint16_t* row) { return __atomic_load_n(row, __ATOMIC_RELAXED); }
+  static unsigned LoadRow(const std::uint16_t* row)
+  {
+    return __atomic_load_n(row, __ATOMIC_RELAXED);
+  }
   // Adds `bits` (not 0) to the row; true if any was not there yet.
   static bool AddToRow(std::uint16_t* row, unsigned bits)
   {
@@ -209,8 +209,8 @@ private:
   {
     char expected = FreeBlock;
     if (this->BlockState[b] == FreeBlock &&
-      __atomic_compare_exchange_n(&this->BlockState[b], &expected, ReachedBlock, false,
-        __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+      __atomic_compare_exchange_n(
+        &this->BlockState[b], &expected, ReachedBlock, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
     {
       push.Push(b);
     }
@@ -226,29 +226,31 @@ private:
     this->G.BlockCoordinates(b, c);
     if (this->G.Sign[b] != 0)
     {
-      this->G.ForEachNeighbour(c, [&](vtkIdType nb, const int d[3]) {
-        if (!this->Floods(nb))
+      this->G.ForEachNeighbour(c,
+        [&](vtkIdType nb, const int d[3])
         {
-          return;
-        }
-        if (this->G.Sign[nb] != 0)
-        {
-          this->ReachSkipped(nb, push);
-          return;
-        }
-        // The neighbour's points shared with this block (it sees this block at −d).
-        int m[3], nn[3], lo[3], hi[3];
-        this->G.BlockCoordinates(nb, m);
-        this->G.CellCounts(m, nn);
-        for (int a = 0; a < 3; ++a)
-        {
-          SharedPoints(-d[a], nn[a], lo[a], hi[a]);
-        }
-        if (this->Seed(this->G.Slot[nb], lo, hi))
-        {
-          push.Push(nb);
-        }
-      });
+          if (!this->Floods(nb))
+          {
+            return;
+          }
+          if (this->G.Sign[nb] != 0)
+          {
+            this->ReachSkipped(nb, push);
+            return;
+          }
+          // The neighbour's points shared with this block (it sees this block at −d).
+          int m[3], nn[3], lo[3], hi[3];
+          this->G.BlockCoordinates(nb, m);
+          this->G.CellCounts(m, nn);
+          for (int a = 0; a < 3; ++a)
+          {
+            SharedPoints(-d[a], nn[a], lo[a], hi[a]);
+          }
+          if (this->Seed(this->G.Slot[nb], lo, hi))
+          {
+            push.Push(nb);
+          }
+        });
       return;
     }
     const int slot = this->G.Slot[b];
@@ -336,12 +338,14 @@ private:
   // Copies the reached points of plane `plane` (axis a) into plane `target` of the
   // active block `slot` (the same points); true if any is new there. (Only the plane's
   // rows.)
-  bool PassFace(const std::uint16_t* reached, int a, int plane, const int n[3], int slot, int target)
+  bool PassFace(
+    const std::uint16_t* reached, int a, int plane, const int n[3], int slot, int target)
   {
     const std::uint16_t* fr = this->Free.GetPointer() + size_t(slot) * Rows;
     std::uint16_t* rr = this->Reached.GetPointer() + size_t(slot) * Rows;
     bool added = false;
-    auto pass = [&](unsigned in, int to) {
+    auto pass = [&](unsigned in, int to)
+    {
       const unsigned add = in & fr[to] & ~LoadRow(rr + to);
       if (add && AddToRow(rr + to, add))
       {
@@ -401,7 +405,8 @@ private:
           dirty[r >> 6] |= std::uint64_t(1) << (r & 63);
         }
       }
-    auto pass = [&](unsigned from, int to) {
+    auto pass = [&](unsigned from, int to)
+    {
       const unsigned add = from & fr[to] & ~LoadRow(rr + to);
       if (add && AddToRow(rr + to, add))
       {
@@ -452,10 +457,10 @@ private:
 
   const BlockGrid& G;
   int Outside;
-  std::vector<char> BlockState; // skipped blocks: FreeBlock, ReachedBlock or 0
+  std::vector<char> BlockState;           // skipped blocks: FreeBlock, ReachedBlock or 0
   pisurf::Buffer<std::uint16_t>& Free;    // per active block: Rows masks each
   pisurf::Buffer<std::uint16_t>& Reached; // (the same)
-  std::vector<char> Queued; // per block: queued for the flood's next round
+  std::vector<char> Queued;               // per block: queued for the flood's next round
   int FloodBegin = 0, FloodEnd = 1 << 30; // the block layers flooded
 };
 }

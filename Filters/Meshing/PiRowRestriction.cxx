@@ -91,8 +91,8 @@ std::vector<FactorCache*> PrepareFactorCaches(std::vector<double>& gridKey,
       continue;
     }
     std::vector<double> key = FactorKey(factor.Polynomial);
-    auto found = std::find_if(
-      store.begin(), store.end(), [&](const FactorCache& c) { return c.Key == key; });
+    auto found =
+      std::find_if(store.begin(), store.end(), [&](const FactorCache& c) { return c.Key == key; });
     if (found == store.end())
     {
       FactorCache cache;
@@ -207,8 +207,7 @@ double RowRestriction::Restrict(const ProductKernel* kernel, const BlockGrid& g,
 {
   // The polynomial factors keep their row restrictions between executions (see
   // FactorCache): only new factors and new rows are restricted.
-  std::vector<FactorCache*> caches =
-    PrepareFactorCaches(this->CacheGrid, this->Factors, kernel, g);
+  std::vector<FactorCache*> caches = PrepareFactorCaches(this->CacheGrid, this->Factors, kernel, g);
   // (Every entry is written below: resized, not cleared.)
   LargeVector<double>& coefficients = this->Coefficients;
   const std::vector<vtkIdType>& rows = this->Rows;
@@ -227,12 +226,12 @@ double RowRestriction::Restrict(const ProductKernel* kernel, const BlockGrid& g,
   coefficients.resize(rows.size() * kernel->GetLineCoefficientCount());
   if (caches.empty())
   {
-    RestrictRows restrict{ kernel, &g, &rows, &coefficients };
+    RestrictRows restrict { kernel, &g, &rows, &coefficients };
     pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   else
   {
-    RestrictCachedRows restrict{ &g, &rows, &caches, kernel, &coefficients };
+    RestrictCachedRows restrict { &g, &rows, &caches, kernel, &coefficients };
     pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 256, restrict);
   }
   return 0.0;

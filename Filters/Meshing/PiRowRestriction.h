@@ -23,10 +23,10 @@ struct FactorCache
 {
   std::vector<double> Key;   // the factor's content (see FactorKey)
   int Coefficients = 0;      // per row: degree + 1
-  LargeVector<double> Rows; // per grid row (j, k): the restricted coefficients
-                                    // (uninitialized until RowDone says so)
+  LargeVector<double> Rows;  // per grid row (j, k): the restricted coefficients
+                             // (uninitialized until RowDone says so)
   std::vector<char> RowDone; // per grid row: Rows holds it
-  bool Used = false;          // matched by a factor of the current execution
+  bool Used = false;         // matched by a factor of the current execution
 };
 
 class RowRestriction

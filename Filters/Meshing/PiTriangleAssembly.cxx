@@ -15,8 +15,8 @@
 
 namespace pisurf
 {
-void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope,
-  const PieceSlab& slab, MeshingWork& work, pisurf::PassTimer& lap)
+void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope, const PieceSlab& slab,
+  MeshingWork& work, pisurf::PassTimer& lap)
 {
   const int slabBegin = slab.SlabBegin, slabEnd = slab.SlabEnd;
   const vtkIdType activeCount = static_cast<vtkIdType>(g.Active.size());
@@ -37,8 +37,8 @@ void TriangleAssembly::Run(const BlockGrid& g, const OuterEnvelope* envelope,
     trianglesOfCase[index] = static_cast<std::uint8_t>(count);
   }
   BlockContour contour{ &g, envelope, vtkMarchingCubesTriangleCases::GetCases(), &vertexCount,
-    &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, nullptr, BlockContour::Count, slabBegin,
-    slabEnd, nullptr, nullptr, nullptr, trianglesOfCase };
+    &triangleCount, &vertexEdge, &vertexT, &vertexEnds, nullptr, nullptr, BlockContour::Count,
+    slabBegin, slabEnd, nullptr, nullptr, nullptr, trianglesOfCase };
   pisurf::Buffer<std::uint16_t>& rowSigns = work.RowSigns;
   pisurf::Buffer<std::uint16_t>& edgeOffsets = work.EdgeOffsets;
   pisurf::Buffer<std::uint8_t>& edgeMasks = work.EdgeMasks;
@@ -114,9 +114,8 @@ void TriangleAssembly::KeepUsedVertices(MeshingWork& work)
   // Keep only the vertices this piece's triangles use (the seams' vertices are shared
   // with the neighbouring piece, at identical positions).
   std::vector<vtkIdType> renumber(vertices, -1);
-  auto id = [&](vtkIdType t) -> vtkIdType {
-    return narrow ? connectivity32->GetPointer(0)[t] : connectivity->GetPointer(0)[t];
-  };
+  auto id = [&](vtkIdType t) -> vtkIdType
+  { return narrow ? connectivity32->GetPointer(0)[t] : connectivity->GetPointer(0)[t]; };
   for (vtkIdType t = 0; t < 3 * triangles; ++t)
   {
     renumber[id(t)] = 0;
@@ -158,14 +157,17 @@ vtkSmartPointer<vtkCellArray> TriangleAssembly::NewCells() const
   // arrays as they are (SetData with a cell size would copy the connectivity and fill the
   // offsets on one thread).
   vtkNew<vtkCellArray> polys;
-  auto fillOffsets = [triangles](auto* offset) {
+  auto fillOffsets = [triangles](auto* offset)
+  {
     using Id = typename std::remove_pointer<decltype(offset)>::type;
-    pisurf::ParallelFor(0, triangles + 1, 0, [offset](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType t = begin; t < end; ++t)
+    pisurf::ParallelFor(0, triangles + 1, 0,
+      [offset](vtkIdType begin, vtkIdType end)
       {
-        offset[t] = static_cast<Id>(3 * t);
-      }
-    });
+        for (vtkIdType t = begin; t < end; ++t)
+        {
+          offset[t] = static_cast<Id>(3 * t);
+        }
+      });
   };
   if (narrow)
   {

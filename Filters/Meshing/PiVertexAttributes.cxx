@@ -40,7 +40,7 @@ struct VertexWorker
   vtkIntArray* Factor;
   vtkDoubleArray* GradientMagnitude; // may be null
   bool Project;
-  double Tolerance; // stop when the bracket is shorter than this
+  double Tolerance;      // stop when the bracket is shorter than this
   bool PositiveEnvelope; // the outer envelope is on and its outside sign is +
   // Progress from 0.75 to 1 and cancel, through the main thread (this pass is the
   // longest for a large molecule).
@@ -59,11 +59,12 @@ struct VertexWorker
   // restrictions to the edge's line: stops when |F| <= small or a step is shorter than
   // `width` (Newton's error is then about the square of that step). −1 where the plain
   // product cannot be used (then the caller's regula falsi decides).
-  static double Newton(const pisurf::ProductKernel* kernel, const double* line, int axis,
-    double x0, double dx, double t, double va, double small, double width)
+  static double Newton(const pisurf::ProductKernel* kernel, const double* line, int axis, double x0,
+    double dx, double t, double va, double small, double width)
   {
     return NewtonOn(
-      [&](double s, double& v, double& slope) {
+      [&](double s, double& v, double& slope)
+      {
         const bool ok = kernel->EvaluateOnAxisWithSlope(line, axis, x0 + s * dx, v, slope);
         slope *= dx;
         return ok;
@@ -77,10 +78,8 @@ struct VertexWorker
   static double RowNewton(const pisurf::ProductKernel* kernel, const double* row, double t0,
     double t, double va, double small, double width)
   {
-    return NewtonOn(
-      [&](double s, double& v, double& slope) {
-        return kernel->EvaluateRestrictedWithSlope(row, t0 + s, v, slope);
-      },
+    return NewtonOn([&](double s, double& v, double& slope)
+      { return kernel->EvaluateRestrictedWithSlope(row, t0 + s, v, slope); },
       t, va, small, width);
   }
 
@@ -253,9 +252,8 @@ struct VertexWorker
     // are the grid's); where it is beyond 1e200 at an end, its compressed form
     // sign(F)·ln(1 + |F|) is used instead.
     bool compressed = false;
-    auto phi = [&](const double x[3]) {
-      return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x);
-    };
+    auto phi = [&](const double x[3])
+    { return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x); };
     if (!(std::fabs(va) < 1e200 && std::fabs(vb) < 1e200))
     {
       compressed = true;
@@ -292,10 +290,10 @@ struct VertexWorker
   double RefineOnLine(const double a[3], const double b[3], double t, double va, double vb,
     bool compressed, int axis, const pisurf::ProductKernel* kernel, double length) const
   {
-    auto phi = [&](const double x[3]) {
-      return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x);
-    };
-    auto pointAt = [&](double s, double x[3]) {
+    auto phi = [&](const double x[3])
+    { return compressed ? this->F->EvaluateCompressed(x) : this->F->Evaluate(x); };
+    auto pointAt = [&](double s, double x[3])
+    {
       for (int k = 0; k < 3; ++k)
       {
         x[k] = a[k] + s * (b[k] - a[k]);
@@ -314,7 +312,8 @@ struct VertexWorker
     }
     const bool restricted = kernel && kernel->RestrictToAxis(a, axis, line);
     const bool onAxis = restricted && !compressed;
-    auto along = [&](double s) {
+    auto along = [&](double s)
+    {
       if (onAxis)
       {
         return kernel->EvaluateOnAxis(line, axis, a[axis] + s * (b[axis] - a[axis]));
@@ -323,13 +322,15 @@ struct VertexWorker
       pointAt(s, x);
       return phi(x);
     };
-    auto offOuterSide = [&](double s) {
+    auto offOuterSide = [&](double s)
+    {
       double x[3];
       pointAt(s, x);
       return this->F->OffOuterSide(x);
     };
     // The root between s0 and s1 (either order), where F is f0 and f1 of opposite signs.
-    auto rootBetween = [&](double s0, double f0, double s1, double f1) {
+    auto rootBetween = [&](double s0, double f0, double s1, double f1)
+    {
       const double lo = std::min(s0, s1), hi = std::max(s0, s1);
       const double flo = s0 < s1 ? f0 : f1, fhi = s0 < s1 ? f1 : f0;
       return pisurf::BracketedRoot(along, lo, hi, flo, fhi, this->Tolerance / length,
@@ -337,7 +338,8 @@ struct VertexWorker
     };
     // The first sign change stepping from the end `from` (0 or 1) towards the other:
     // the surface nearest that end; `from` itself if F keeps its sign at every step.
-    auto firstCrossing = [&](double from) {
+    auto firstCrossing = [&](double from)
+    {
       constexpr int Steps = 16;
       double s0 = from, f0 = from == 0.0 ? va : vb;
       for (int m = 1; m <= Steps; ++m)
@@ -360,7 +362,8 @@ struct VertexWorker
     // From the positive end `from` (on the outer side) to `to` (off it): where the edge
     // leaves the outer side, found by bisection; if F is negative just before it (the
     // thin wall), the root in between is on the outer sheet. -1 if not.
-    auto outerCrossing = [&](double from, double to) {
+    auto outerCrossing = [&](double from, double to)
+    {
       double out = from, off = to;
       for (int m = 0; m < 64 && std::fabs(off - out) * length > this->Tolerance; ++m)
       {
@@ -407,8 +410,8 @@ struct VertexWorker
     double root = -1.0;
     if (onAxis)
     {
-      root = this->Newton(kernel, line, axis, a[axis], b[axis] - a[axis], t, va, small,
-        this->Tolerance / length);
+      root = this->Newton(
+        kernel, line, axis, a[axis], b[axis] - a[axis], t, va, small, this->Tolerance / length);
     }
     if (root < 0.0 && restricted)
     {
@@ -666,8 +669,7 @@ struct VertexWorker
     const bool thinWall = ((va > 0 && vb > 0) || (va < 0 && vb < 0)) && (t == 0.0 || t == 1.0);
     pisurf::Field::EdgeVertex fast;
     double x[3];
-    if (this->Project && (bracket || thinWall) &&
-      std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
+    if (this->Project && (bracket || thinWall) && std::fabs(va) < 1e200 && std::fabs(vb) < 1e200 &&
       this->F->RefineEdge(
         e.A, e.B, va, vb, bracket ? -1 : static_cast<int>(t), this->Tolerance, fast) &&
       !(this->PositiveEnvelope && fast.OffOuterSide))

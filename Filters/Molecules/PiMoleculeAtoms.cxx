@@ -55,8 +55,9 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
     }
     if (n > 0 && !z && radiusTable != vtkPiMoleculeSurface::POINT_ARRAY)
     {
-      vtkErrorWithObjectMacro(algorithm, << "The input polydata has no point array 'atom_type' or 'AtomicNumber' "
-                       "(atomic numbers); use RadiusTable = point array with a radius array");
+      vtkErrorWithObjectMacro(
+        algorithm, << "The input polydata has no point array 'atom_type' or 'AtomicNumber' "
+                      "(atomic numbers); use RadiusTable = point array with a radius array");
       return false;
     }
     atoms->SetNumberOfPoints(n);
@@ -73,7 +74,8 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
   }
   else
   {
-    vtkErrorWithObjectMacro(algorithm, << "The input must be a vtkMolecule or a vtkPolyData of atoms");
+    vtkErrorWithObjectMacro(
+      algorithm, << "The input must be a vtkMolecule or a vtkPolyData of atoms");
     return false;
   }
   const vtkIdType count = atoms->GetNumberOfPoints();
@@ -99,15 +101,16 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
     }
     if (!radiusArray)
     {
-      vtkErrorWithObjectMacro(algorithm, << "RadiusTable is a point array, but the input has no such array "
-                       "(set the input array to process, e.g. 'radius')");
+      vtkErrorWithObjectMacro(
+        algorithm, << "RadiusTable is a point array, but the input has no such array "
+                      "(set the input array to process, e.g. 'radius')");
       return false;
     }
     if (radiusArray->GetNumberOfTuples() != count)
     {
-      vtkErrorWithObjectMacro(algorithm, << "The radius array '" << (radiusArray->GetName() ? radiusArray->GetName() : "")
-                    << "' has " << radiusArray->GetNumberOfTuples() << " values for " << count
-                    << " atoms");
+      vtkErrorWithObjectMacro(algorithm,
+        << "The radius array '" << (radiusArray->GetName() ? radiusArray->GetName() : "")
+        << "' has " << radiusArray->GetNumberOfTuples() << " values for " << count << " atoms");
       return false;
     }
   }
@@ -119,7 +122,8 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
     {
       if (!std::isfinite(centers[3 * i + a]))
       {
-        vtkErrorWithObjectMacro(algorithm, << "Atom " << i << " has a coordinate that is not a finite number");
+        vtkErrorWithObjectMacro(
+          algorithm, << "Atom " << i << " has a coordinate that is not a finite number");
         return false;
       }
     }
@@ -140,8 +144,9 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
         R = radiusArray->GetComponent(i, 0);
         if (!(std::isfinite(R) && R > 0 && R <= MaximumExtent))
         {
-          vtkErrorWithObjectMacro(algorithm, << "Atom " << i << " has the radius " << R << " in '"
-                        << (radiusArray->GetName() ? radiusArray->GetName() : "") << "'");
+          vtkErrorWithObjectMacro(
+            algorithm, << "Atom " << i << " has the radius " << R << " in '"
+                       << (radiusArray->GetName() ? radiusArray->GetName() : "") << "'");
           return false;
         }
     }
@@ -161,11 +166,14 @@ bool Atoms::Read(vtkAlgorithm* algorithm, vtkDataObject* input, int radiusTable,
     std::ostringstream list;
     for (const auto& m : missing)
     {
-      list << " " << (m.first > 0 && m.first <= table->GetNumberOfElements() ? table->GetSymbol(m.first) : "X")
+      list << " "
+           << (m.first > 0 && m.first <= table->GetNumberOfElements() ? table->GetSymbol(m.first)
+                                                                      : "X")
            << " (" << m.second << " atoms)";
     }
-    vtkWarningWithObjectMacro(algorithm, << "No radius in the chosen table for:" << list.str()
-                    << "; using the Blue Obelisk radius (1.7 Å for unknown elements)");
+    vtkWarningWithObjectMacro(
+      algorithm, << "No radius in the chosen table for:" << list.str()
+                 << "; using the Blue Obelisk radius (1.7 Å for unknown elements)");
   }
   return true;
 }

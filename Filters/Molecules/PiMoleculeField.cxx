@@ -40,7 +40,8 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
   // apart): the far-field bound is computed per cell, so any size is correct, and the
   // cells' memory (about 150 bytes each) stays bounded.
   constexpr double MaxCells = double(1 << 21);
-  auto cellCount = [&](double size) {
+  auto cellCount = [&](double size)
+  {
     double n = 1.0;
     for (int a = 0; a < 3; ++a)
     {
@@ -68,7 +69,8 @@ MoleculeField::MoleculeField(std::vector<double> centers, std::vector<double> ra
     for (int a = 0; a < 3; ++a)
     {
       c[a] = std::min(this->Dims[a] - 1,
-        std::max(0, static_cast<int>(std::floor((this->Centers[3 * i + a] - this->Origin[a]) / s))));
+        std::max(
+          0, static_cast<int>(std::floor((this->Centers[3 * i + a] - this->Origin[a]) / s))));
     }
     cellOf[i] = (c[2] * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
     ++this->BinStart[cellOf[i] + 1];
@@ -184,7 +186,6 @@ const MoleculeField::Cell* MoleculeField::CellAt(const double p[3]) const
   return &cell;
 }
 
-
 void MoleculeField::BuildCell(long id, Cell& cell) const
 {
   const double s = this->Settings.CellSize;
@@ -197,14 +198,16 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
     box[2 * a + 1] = box[2 * a] + s;
   }
   // Near atoms: within their reach of the box.
-  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
-    const double R = this->Reach(i);
-    if (Distance2ToBox(&this->Centers[3 * i], box) < R * R)
+  this->ForAtomsNear(box, this->MaxReach,
+    [&](int i)
     {
-      cell.Near.push_back(i);
-    }
-    return false;
-  });
+      const double R = this->Reach(i);
+      if (Distance2ToBox(&this->Centers[3 * i], box) < R * R)
+      {
+        cell.Near.push_back(i);
+      }
+      return false;
+    });
   std::sort(cell.Near.begin(), cell.Near.end());
   if (this->Settings.Mode == MoleculeMode::Local)
   {
@@ -228,14 +231,16 @@ void MoleculeField::BuildCell(long id, Cell& cell) const
   }
   const Super& super = this->SuperAt(c);
   std::vector<int> mid, candidates;
-  this->ForAtomsNear(super.Box, this->MaxRadius + SuperNear, [&](int i) {
-    const double reach = this->Radii[i] + SuperNear;
-    if (Distance2ToBox(&this->Centers[3 * i], super.Box) < reach * reach)
+  this->ForAtomsNear(super.Box, this->MaxRadius + SuperNear,
+    [&](int i)
     {
-      candidates.push_back(i); // not in the supercell's outer set
-    }
-    return false;
-  });
+      const double reach = this->Radii[i] + SuperNear;
+      if (Distance2ToBox(&this->Centers[3 * i], super.Box) < reach * reach)
+      {
+        candidates.push_back(i); // not in the supercell's outer set
+      }
+      return false;
+    });
   std::sort(candidates.begin(), candidates.end());
   std::set_difference(candidates.begin(), candidates.end(), cell.Near.begin(), cell.Near.end(),
     std::back_inserter(mid));
@@ -314,26 +319,28 @@ const MoleculeField::Super& MoleculeField::SuperAt(const int cell[3]) const
   }
   const long id = (long(c[2]) * this->SuperDims[1] + c[1]) * this->SuperDims[0] + c[0];
   Super& super = this->Supers[id];
-  std::call_once(this->SuperOnce[id], [&] {
-    const double s = this->Settings.CellSize * SuperCells;
-    for (int a = 0; a < 3; ++a)
+  std::call_once(this->SuperOnce[id],
+    [&]
     {
-      super.Box[2 * a] = this->Origin[a] + c[a] * s;
-      super.Box[2 * a + 1] = super.Box[2 * a] + s;
-      super.Center[a] = super.Box[2 * a] + 0.5 * s;
-    }
-    // Outer atoms: beyond R_j + SuperNear of the supercell's box.
-    std::vector<int> outer;
-    for (size_t i = 0; i < this->Radii.size(); ++i)
-    {
-      const double reach = this->Radii[i] + SuperNear;
-      if (Distance2ToBox(&this->Centers[3 * i], super.Box) >= reach * reach)
+      const double s = this->Settings.CellSize * SuperCells;
+      for (int a = 0; a < 3; ++a)
       {
-        outer.push_back(static_cast<int>(i));
+        super.Box[2 * a] = this->Origin[a] + c[a] * s;
+        super.Box[2 * a + 1] = super.Box[2 * a] + s;
+        super.Center[a] = super.Box[2 * a] + 0.5 * s;
       }
-    }
-    this->AddFar(outer, super.Center, super.Box, 0.5 * std::sqrt(3.0) * s, super.Far);
-  });
+      // Outer atoms: beyond R_j + SuperNear of the supercell's box.
+      std::vector<int> outer;
+      for (size_t i = 0; i < this->Radii.size(); ++i)
+      {
+        const double reach = this->Radii[i] + SuperNear;
+        if (Distance2ToBox(&this->Centers[3 * i], super.Box) >= reach * reach)
+        {
+          outer.push_back(static_cast<int>(i));
+        }
+      }
+      this->AddFar(outer, super.Center, super.Box, 0.5 * std::sqrt(3.0) * s, super.Far);
+    });
   return super;
 }
 }

@@ -17,20 +17,18 @@
  *   beyond R_j + 8 Å of the cell's supercell (4³ cells, 8 Å) are expanded once per
  *   supercell about its centre (bound over the supercell, h its half-diagonal), and that
  *   quadratic is re-centred exactly on each cell; only the atoms in between are summed
- *   per cell, so building a cell costs the atoms within ~20 Å, not all atoms. The remainder is bounded
- *   rigorously: along a direction δ, |d³/ds³ ln f_j| <= b_j = max(4/q^(3/2),
- *   e(4e² + 12R_j²)/q³) with e the distance of c_j from the cell box and q = e² − R_j²,
- *   so |L − T| <= B = (h³/6)·Σ_far b_j with h the cell's half-diagonal. Where the
- *   approximate ln|P| is within B of ln r (F's sign could depend on the approximation)
- *   the point is evaluated exactly over all atoms, so the sign of F is always exact, the
- *   surface (and every vertex found by root finding) is the exact one, and values away
- *   from the surface have a relative error below e^B − 1. Cost per point: the near
- *   atoms (about 30 to 60 in a protein); per cell, the atoms within ~20 Å; per supercell
- *   (64 cells), all atoms. ClassifyBox uses only the atoms within R + NearDistance of
- *   the box (every other factor is at least NearDistance²). A vertex usually costs one
- *   pass over its cell's near atoms (FirstRoot).
- *   The product is accumulated with a separate binary exponent: 10^5 factors do not
- *   overflow.
+ *   per cell, so building a cell costs the atoms within ~20 Å, not all atoms. The remainder is
+ * bounded rigorously: along a direction δ, |d³/ds³ ln f_j| <= b_j = max(4/q^(3/2), e(4e² +
+ * 12R_j²)/q³) with e the distance of c_j from the cell box and q = e² − R_j², so |L − T| <= B =
+ * (h³/6)·Σ_far b_j with h the cell's half-diagonal. Where the approximate ln|P| is within B of ln r
+ * (F's sign could depend on the approximation) the point is evaluated exactly over all atoms, so
+ * the sign of F is always exact, the surface (and every vertex found by root finding) is the exact
+ * one, and values away from the surface have a relative error below e^B − 1. Cost per point: the
+ * near atoms (about 30 to 60 in a protein); per cell, the atoms within ~20 Å; per supercell (64
+ * cells), all atoms. ClassifyBox uses only the atoms within R + NearDistance of the box (every
+ * other factor is at least NearDistance²). A vertex usually costs one pass over its cell's near
+ * atoms (FirstRoot). The product is accumulated with a separate binary exponent: 10^5 factors do
+ * not overflow.
  *
  * Local: g_i = 1 + (f_i − 1)·w(u_i), with u_i = (|p − c_i|² − R_i²)/(ρ_i² − R_i²)
  *   clamped to [0, 1], ρ_i = R_i + InfluenceRadius and w(u) = 1 − u³(10 − 15u + 6u²)
@@ -95,9 +93,9 @@ struct MoleculeSettings
 /// line each instead of one per array.
 struct alignas(64) LocalAtom
 {
-  double C[3];       ///< the centre
-  double R, R2;      ///< the radius and its square
-  double Rho2;       ///< ρ² = (R + InfluenceRadius)²
+  double C[3];        ///< the centre
+  double R, R2;       ///< the radius and its square
+  double Rho2;        ///< ρ² = (R + InfluenceRadius)²
   double InverseSpan; ///< 1/(ρ² − R²)
 };
 
@@ -157,7 +155,8 @@ public:
   /// cell) exceeds the level, F > 0 there and the root is within ε of s1. True for most
   /// vertices of a protein, where the far atoms make P astronomically large off the
   /// spheres: the near atoms once per vertex instead of all atoms per root-finding step.
-  bool FirstRoot(const double from[3], const double to[3], double tolerance, double& s) const override;
+  bool FirstRoot(
+    const double from[3], const double to[3], double tolerance, double& s) const override;
   /// Local mode: the atoms whose influence reaches the box are found once, and each one
   /// multiplies only the points within its ρ (the same products, in the same atom
   /// order, as Evaluate). Global mode: false.
@@ -202,8 +201,8 @@ private:
   template <class Visit>
   bool ForAtomsNear(const double box[6], double margin, Visit&& visit) const;
   const Super& SuperAt(const int cell[3]) const;
-  void AddFar(const std::vector<int>& atoms, const double centre[3], const double box[6],
-    double h, Expansion& out) const;
+  void AddFar(const std::vector<int>& atoms, const double centre[3], const double box[6], double h,
+    Expansion& out) const;
   void BuildCell(long id, Cell& cell) const;
   // The factor of atom i at p (f_i or the Local g_i) and, if g is not null, its gradient.
   double AtomFactor(size_t i, const double p[3], double* g) const;

@@ -33,8 +33,8 @@ void MultiplyLocalRow(double* row, const double* xs, int lo, int hi, double cx, 
 }
 }
 
-bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
-  const int first[3], const int last[3], long strideY, long strideZ, double* values) const
+bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3], const int first[3],
+  const int last[3], long strideY, long strideZ, double* values) const
 {
   BoxPoints points;
   if (this->Settings.Mode != MoleculeMode::Local || !points.Set(origin, spacing, first, last))
@@ -47,13 +47,15 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
   // the cells' lists, so that each point's product is Evaluate's, factor by factor.
   thread_local std::vector<int> atoms;
   atoms.clear();
-  this->ForAtomsNear(points.Box, this->MaxReach, [&](int i) {
-    if (Distance2ToBox(&this->Centers[3 * i], points.Box) < this->Atoms[i].Rho2 * (1.0 + 1e-9))
+  this->ForAtomsNear(points.Box, this->MaxReach,
+    [&](int i)
     {
-      atoms.push_back(i);
-    }
-    return false;
-  });
+      if (Distance2ToBox(&this->Centers[3 * i], points.Box) < this->Atoms[i].Rho2 * (1.0 + 1e-9))
+      {
+        atoms.push_back(i);
+      }
+      return false;
+    });
   std::sort(atoms.begin(), atoms.end());
   for (int k = 0; k < n[2]; ++k)
   {
@@ -69,12 +71,14 @@ bool MoleculeField::EvaluateBox(const double origin[3], const double spacing[3],
     const LocalAtom& atom = this->Atoms[i];
     const double rho2 = atom.Rho2, r2 = atom.R2, inverse = atom.InverseSpan;
     const double cx = c[0];
-    points.ForRowsNear(c, rho2, [&](int k, int j, int lo, int hi, double v1, double v2) {
-      // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the atom
-      // is beyond ρ changes nothing).
-      MultiplyLocalRow(
-        values + k * strideZ + j * strideY, xs, lo, hi, cx, v1, v2, r2, rho2, inverse);
-    });
+    points.ForRowsNear(c, rho2,
+      [&](int k, int j, int lo, int hi, double v1, double v2)
+      {
+        // ComputeLocal's arithmetic, term by term (the multiply by exactly 1 where the atom
+        // is beyond ρ changes nothing).
+        MultiplyLocalRow(
+          values + k * strideZ + j * strideY, xs, lo, hi, cx, v1, v2, r2, rho2, inverse);
+      });
   }
   const double level = this->Level;
   for (int k = 0; k < n[2]; ++k)
@@ -112,23 +116,27 @@ bool MoleculeField::OffOuterSideBox(const double origin[3], const double spacing
     return true; // OffOuterSide is false everywhere
   }
   const double* xs = points.X[0];
-  this->ForAtomsNear(points.Box, this->MaxRadius, [&](int i) {
-    const double* c = &this->Centers[3 * i];
-    const double r2 = this->Radii[i] * this->Radii[i];
-    if (Distance2ToBox(c, points.Box) < r2 * (1.0 + 1e-9))
+  this->ForAtomsNear(points.Box, this->MaxRadius,
+    [&](int i)
     {
-      points.ForRowsNear(c, r2, [&](int k, int j, int lo, int hi, double dy, double dz) {
-        unsigned char* row = flags + k * strideZ + j * strideY;
-        for (int m = lo; m <= hi; ++m)
-        {
-          // OffOuterSide's test, term by term.
-          const double dx = xs[m] - c[0];
-          row[m] |= dx * dx + dy * dy + dz * dz < r2;
-        }
-      });
-    }
-    return false;
-  });
+      const double* c = &this->Centers[3 * i];
+      const double r2 = this->Radii[i] * this->Radii[i];
+      if (Distance2ToBox(c, points.Box) < r2 * (1.0 + 1e-9))
+      {
+        points.ForRowsNear(c, r2,
+          [&](int k, int j, int lo, int hi, double dy, double dz)
+          {
+            unsigned char* row = flags + k * strideZ + j * strideY;
+            for (int m = lo; m <= hi; ++m)
+            {
+              // OffOuterSide's test, term by term.
+              const double dx = xs[m] - c[0];
+              row[m] |= dx * dx + dy * dy + dz * dz < r2;
+            }
+          });
+      }
+      return false;
+    });
   return true;
 }
 
@@ -141,7 +149,8 @@ int MoleculeField::ClassifyBox(const double box[6]) const
   // d^(2·far) (no upper bound is used). Cost: the atoms near the box, not all atoms.
   const double nearDistance = this->Settings.NearDistance;
   size_t nearCount = 0;
-  auto add = [&](size_t i) {
+  auto add = [&](size_t i)
+  {
     const double* c = &this->Centers[3 * i];
     const double R2 = this->Radii[i] * this->Radii[i];
     const double dmin2 = Distance2ToBox(c, box);
@@ -166,10 +175,12 @@ int MoleculeField::ClassifyBox(const double box[6]) const
   };
   // The atoms binned within MaxReach (R + NearDistance or R + InfluenceRadius at most)
   // of the box: every atom that enters exactly.
-  this->ForAtomsNear(box, this->MaxReach, [&](int i) {
-    add(static_cast<size_t>(i));
-    return false;
-  });
+  this->ForAtomsNear(box, this->MaxReach,
+    [&](int i)
+    {
+      add(static_cast<size_t>(i));
+      return false;
+    });
   const size_t farCount = this->Radii.size() - nearCount;
   if (this->Settings.Mode == MoleculeMode::Global && farCount > 0 && nearDistance > 0)
   {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// MoleculeField on the mesher's edges: the first root from the positive end and the one-pass edge vertex.
+// MoleculeField on the mesher's edges: the first root from the positive end and the one-pass edge
+// vertex.
 #include "PiMoleculeFieldInternals.h"
 
 namespace pisurf
@@ -49,7 +50,8 @@ bool MoleculeField::FirstRoot(
     return false;
   }
   // q_i(u) = |from + u·delta − c_i|² − R_i² = A u² + B_i u + C_i on u in [0, 1].
-  auto coefficients = [&](int i, double& B, double& C) {
+  auto coefficients = [&](int i, double& B, double& C)
+  {
     const double* c = &this->Centers[3 * i];
     const double v[3] = { from[0] - c[0], from[1] - c[1], from[2] - c[2] };
     B = 2.0 * (v[0] * delta[0] + v[1] * delta[1] + v[2] * delta[2]);
@@ -89,7 +91,8 @@ bool MoleculeField::FirstRoot(
   }
   // ln of a lower bound of |P| on [0, u1]: the near factors' exact minima there (none
   // vanishes before s1), the far factors' minima over the whole segment.
-  auto minimum = [&](double B, double C) {
+  auto minimum = [&](double B, double C)
+  {
     // min over [0, u1] of A u² + B u + C (positive there).
     double m = std::min(C, (A * u1 + B) * u1 + C);
     const double vertex = -B / (2.0 * A);
@@ -132,8 +135,7 @@ namespace
 // lambda over references, every store reloaded the count and the array pointers.)
 int GatherReaching(const int* candidates, size_t n, const LocalAtom* atoms, const double a[3],
   int axis, double lower, double upper, int* __restrict ids, double* __restrict K,
-  double* __restrict W, double* __restrict R2, double* __restrict Rho2,
-  double* __restrict Inverse)
+  double* __restrict W, double* __restrict R2, double* __restrict Rho2, double* __restrict Inverse)
 {
   const int u1 = (axis + 1) % 3, u2 = (axis + 2) % 3;
   const double a1 = a[u1], a2 = a[u2], aa = a[axis];
@@ -160,8 +162,8 @@ int GatherReaching(const int* candidates, size_t n, const LocalAtom* atoms, cons
 }
 }
 
-bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb,
-  int from, double tolerance, EdgeVertex& vertex) const
+bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, double vb, int from,
+  double tolerance, EdgeVertex& vertex) const
 {
   const bool bracket = (va < 0 && vb > 0) || (va > 0 && vb < 0);
   if (this->Settings.Mode != MoleculeMode::Local || (from < 0 && !bracket) || from > 1)
@@ -236,8 +238,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     candidateCount = static_cast<size_t>(
       std::set_union(p.begin(), p.end(), q.begin(), q.end(), merged.begin()) - merged.begin());
   }
-  const int count = GatherReaching(candidates, candidateCount, this->Atoms.data(), a, axis,
-    lower, upper, ids, K, W, R2, Rho2, Inverse);
+  const int count = GatherReaching(candidates, candidateCount, this->Atoms.data(), a, axis, lower,
+    upper, ids, K, W, R2, Rho2, Inverse);
   // F on the segment and its derivative in s (LocalFactor: the same g as AtomFactor,
   // without branches).
   const double delta = b[axis] - a[axis];
@@ -253,7 +255,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     R2[m] = 1.0;
     Inverse[m] = 1.0;
   }
-  auto phi = [&](double s, double& derivative) {
+  auto phi = [&](double s, double& derivative)
+  {
     LocalTerms(K, W, R2, Inverse, count, s * delta, delta, G, DG);
     double p0 = 1.0, p1 = 1.0, d0 = 0.0, d1 = 0.0;
     int m = 0;
@@ -311,7 +314,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   const double small = 1e-12 * std::max(std::fabs(va), std::fabs(vb));
   double s = flo == 0.0 ? lo : (fhi == 0.0 ? hi : lo + (hi - lo) * flo / (flo - fhi));
   bool certified = flo == 0.0 || fhi == 0.0;
-  auto narrow = [&](double at, double f) {
+  auto narrow = [&](double at, double f)
+  {
     if ((f < 0) == (flo < 0))
     {
       lo = at;
@@ -341,8 +345,7 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
     {
       // Just beyond the estimate, away from s: a sign change brackets the root within
       // [s, probe], shorter than the tolerance.
-      const double probe =
-        std::max(lo, std::min(hi, next + (next > s ? 0.5 : -0.5) * width));
+      const double probe = std::max(lo, std::min(hi, next + (next > s ? 0.5 : -0.5) * width));
       double unused;
       const double fp = phi(probe, unused);
       narrow(probe, fp);
@@ -368,8 +371,8 @@ bool MoleculeField::RefineEdge(const double a[3], const double b[3], double va, 
   }
   // EvaluateVertex's answers and OffOuterSide at x, over the same atoms (every atom
   // within ρ of x is among them).
-  this->LocalVertex(x, ids, count, vertex.Normal, vertex.GradientNorm, vertex.Nearest,
-    &vertex.OffOuterSide);
+  this->LocalVertex(
+    x, ids, count, vertex.Normal, vertex.GradientNorm, vertex.Nearest, &vertex.OffOuterSide);
   return true;
 }
 }

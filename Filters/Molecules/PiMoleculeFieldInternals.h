@@ -105,8 +105,8 @@ inline double Distance2ToBox(const double c[3], const double box[6])
   double d2 = 0.0;
   for (int a = 0; a < 3; ++a)
   {
-    const double t = c[a] < box[2 * a] ? box[2 * a] - c[a]
-                                       : (c[a] > box[2 * a + 1] ? c[a] - box[2 * a + 1] : 0.0);
+    const double t =
+      c[a] < box[2 * a] ? box[2 * a] - c[a] : (c[a] > box[2 * a + 1] ? c[a] - box[2 * a + 1] : 0.0);
     d2 += t * t;
   }
   return d2;
@@ -208,7 +208,6 @@ inline double LocalFactor(double f, double inverseSpan, double& slope)
 typedef double MoleculeV4 __attribute__((vector_size(32)));
 typedef double MoleculeV4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
 
-
 // The grid points of a box query (EvaluateBox, OffOuterSideBox): how many per axis, the
 // box they span and their coordinates, computed as the mesher computes them (origin +
 // index·spacing). The coordinates live in a per-thread buffer until the next query.
@@ -278,9 +277,11 @@ struct BoxPoints
         const double half = std::sqrt(r2 - across);
         // The conversions truncate: two points of margin cover them.
         const int lo = std::max(0,
-          static_cast<int>((c[0] - half - this->Origin0) * this->InverseSpacing0) - 2 - this->First0);
+          static_cast<int>((c[0] - half - this->Origin0) * this->InverseSpacing0) - 2 -
+            this->First0);
         const int hi = std::min(this->N[0] - 1,
-          static_cast<int>((c[0] + half - this->Origin0) * this->InverseSpacing0) + 2 - this->First0);
+          static_cast<int>((c[0] + half - this->Origin0) * this->InverseSpacing0) + 2 -
+            this->First0);
         visit(k, j, lo, hi, v1, v2);
       }
     }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// MoleculeField at points: F, its sign and logarithm, the outer-side test and the vertex attributes.
+// MoleculeField at points: F, its sign and logarithm, the outer-side test and the vertex
+// attributes.
 #include "PiMoleculeFieldInternals.h"
 
 namespace pisurf
@@ -180,11 +181,13 @@ bool MoleculeField::OffOuterSide(const double p[3]) const
   // The atoms binned within the largest radius of p (no cell is built: in Global mode
   // that costs a pass over all atoms).
   const double point[6] = { p[0], p[0], p[1], p[1], p[2], p[2] };
-  return this->ForAtomsNear(point, this->MaxRadius, [&](int i) {
-    const double* c = &this->Centers[3 * i];
-    const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
-    return dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i];
-  });
+  return this->ForAtomsNear(point, this->MaxRadius,
+    [&](int i)
+    {
+      const double* c = &this->Centers[3 * i];
+      const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+      return dx * dx + dy * dy + dz * dz < this->Radii[i] * this->Radii[i];
+    });
 }
 
 void MoleculeField::EvaluateVertex(
@@ -199,17 +202,19 @@ double MoleculeField::EvaluateWithLog(const double p[3], double& logAbsF) const
   return this->Compute(p, logAbsF);
 }
 
-bool MoleculeField::ProbeVertex(const double p[3], double probe, double tolerance,
-  double normal[3], double& gradientNorm, int& nearest) const
+bool MoleculeField::ProbeVertex(const double p[3], double probe, double tolerance, double normal[3],
+  double& gradientNorm, int& nearest) const
 {
   // ln|∇F| + ln probe <= ln tolerance + ln max|F(probes)|.
   double logGradient;
   this->EvaluateVertex(p, normal, gradientNorm, nearest, logGradient);
-  const double logProbe = LargestLogAtProbes(p, probe, [this](const double* q) {
-    double logAbs;
-    this->EvaluateWithLog(q, logAbs);
-    return logAbs;
-  });
+  const double logProbe = LargestLogAtProbes(p, probe,
+    [this](const double* q)
+    {
+      double logAbs;
+      this->EvaluateWithLog(q, logAbs);
+      return logAbs;
+    });
   return logGradient + std::log(probe) <= std::log(tolerance) + logProbe;
 }
 
@@ -219,8 +224,8 @@ void MoleculeField::EvaluateVertex(const double p[3], double normal[3], double& 
   const Cell* cell = this->CellAt(p);
   if (this->Settings.Mode == MoleculeMode::Local)
   {
-    this->LocalVertex(p, cell ? cell->Near.data() : nullptr, cell ? cell->Near.size() : 0,
-      normal, gradientNorm, nearest, nullptr);
+    this->LocalVertex(p, cell ? cell->Near.data() : nullptr, cell ? cell->Near.size() : 0, normal,
+      gradientNorm, nearest, nullptr);
     logGradientNorm = gradientNorm > 0 ? std::log(gradientNorm) : -HUGE_VAL;
     return;
   }
@@ -291,8 +296,8 @@ void MoleculeField::EvaluateVertex(const double p[3], double normal[3], double& 
   logGradientNorm = logNorm;
 }
 
-void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t count,
-  double normal[3], double& gradientNorm, int& nearest, bool* inside) const
+void MoleculeField::LocalVertex(const double p[3], const int* atoms, size_t count, double normal[3],
+  double& gradientNorm, int& nearest, bool* inside) const
 {
   // Plain doubles (see ComputeLocal); only atoms within their ρ change the product, and
   // the nearest sphere is among them (F = 0 needs some g_i != 1, and an atom beyond ρ is

@@ -40,7 +40,8 @@ int Compare(const ScaledInterval& P, double level)
 }
 
 // The range of a·s² + b·s + c over [s0, s1].
-inline void QuadraticRange(double a, double b, double c, double s0, double s1, double& lo, double& hi)
+inline void QuadraticRange(
+  double a, double b, double c, double s0, double s1, double& lo, double& hi)
 {
   const double v0 = (a * s0 + b) * s0 + c, v1 = (a * s1 + b) * s1 + c;
   lo = std::min(v0, v1);
@@ -239,8 +240,8 @@ struct MoleculeField::RaySearch
     {
       double lo, hi;
       QuadraticRange(this->T2, this->T1, this->T0, s0, s1, lo, hi);
-      const double slack = 1e-13 * (std::fabs(this->T0) + std::fabs(this->T1) * sm +
-                                     std::fabs(this->T2) * sm * sm) +
+      const double slack =
+        1e-13 * (std::fabs(this->T0) + std::fabs(this->T1) * sm + std::fabs(this->T2) * sm * sm) +
         1e-13 + (bound ? this->Bound : 0.0);
       if (!MultiplyExp(P, lo - slack, hi + slack))
       {
@@ -314,8 +315,10 @@ struct MoleculeField::RaySearch
       // P·L' enters as the term of one more factor, 1 with slope L' = T1 + 2·T2·s ± B'·|d|.
       const double l0 = this->T1 + 2.0 * this->T2 * s0, l1 = this->T1 + 2.0 * this->T2 * s1;
       const double h = 0.5 * std::sqrt(3.0) * this->M.Settings.CellSize;
-      const double norm = std::sqrt(this->D[0] * this->D[0] + this->D[1] * this->D[1] + this->D[2] * this->D[2]);
-      const double slack = 3.0 * this->Bound / h * norm + 1e-13 * (std::fabs(l0) + std::fabs(l1)) + 1e-13;
+      const double norm =
+        std::sqrt(this->D[0] * this->D[0] + this->D[1] * this->D[1] + this->D[2] * this->D[2]);
+      const double slack =
+        3.0 * this->Bound / h * norm + 1e-13 * (std::fabs(l0) + std::fabs(l1)) + 1e-13;
       g.push_back({ 1.0, 1.0 });
       dg.push_back({ std::min(l0, l1) - slack, std::max(l0, l1) + slack });
     }
@@ -360,7 +363,8 @@ struct MoleculeField::RaySearch
       stack.pop_back();
       pool.resize(p.Offset + p.Count); // drop what finished subtrees used
       keep.clear();
-      const int sign = this->Enclose(p.A, p.B, atoms, pool.data() + p.Offset, p.Count, far, true, &keep);
+      const int sign =
+        this->Enclose(p.A, p.B, atoms, pool.data() + p.Offset, p.Count, far, true, &keep);
       if (sign != 0)
       {
         continue;
@@ -386,8 +390,8 @@ struct MoleculeField::RaySearch
         const double va = this->At(p.A), vb = this->At(p.B);
         if (Crosses(va, vb))
         {
-          const double t = BracketedRoot([this](double x) { return this->At(x); }, p.A, p.B, va,
-            vb, this->Options.Tolerance, 0.0);
+          const double t = BracketedRoot([this](double x) { return this->At(x); }, p.A, p.B, va, vb,
+            this->Options.Tolerance, 0.0);
           this->Cluster.Add(t, false, va, vb);
         }
         else if (va == 0.0 || vb == 0.0)
@@ -420,7 +424,8 @@ struct MoleculeField::RaySearch
   // t + tolerance/2]; true if they do (that middle then treated as a leaf). (In Local
   // mode, or at a blended root, an enclosure of a piece that ends next to a root cannot
   // exclude it: halvings.)
-  bool Isolate(const Piece& p, const std::vector<Atom>& atoms, const int* list, bool far, int straddler)
+  bool Isolate(
+    const Piece& p, const std::vector<Atom>& atoms, const int* list, bool far, int straddler)
   {
     // The roots of A s² + B s + C (A > 0), the numerically stable way; one on the piece.
     const Atom& q = atoms[straddler];
@@ -432,7 +437,7 @@ struct MoleculeField::RaySearch
     const double m = -0.5 * (q.B + std::copysign(std::sqrt(disc), q.B));
     const double r0 = m / q.A, r1 = m != 0.0 ? q.C / m : r0;
     const double s0 = p.A - this->Mid, s1 = p.B - this->Mid;
-    const bool in0 = r0 > s0 && r0 < s1, in1 = r1 > s0 && r1 < s1;
+    const bool in0 = r0 > s0 && r0<s1, in1 = r1> s0 && r1 < s1;
     if (in0 == in1)
     {
       return false;
@@ -532,7 +537,8 @@ void MoleculeField::CastRay(const double o[3], const double d[3], double t0, dou
     }
     const double x0 = o[a] + t0 * d[a], x1 = o[a] + t1 * d[a];
     const double k0 = std::max(0.0, std::ceil((std::min(x0, x1) - this->Origin[a]) / s));
-    const double k1 = std::min(double(this->Dims[a]), std::floor((std::max(x0, x1) - this->Origin[a]) / s));
+    const double k1 =
+      std::min(double(this->Dims[a]), std::floor((std::max(x0, x1) - this->Origin[a]) / s));
     for (double k = k0; k <= k1; ++k)
     {
       const double t = (this->Origin[a] + k * s - o[a]) / d[a];

@@ -19,7 +19,8 @@ namespace pisurf
 {
 namespace molecule
 {
-bool Grid::ChooseBounds(vtkAlgorithm* algorithm, const Atoms& atoms, const MoleculeSettings& settings)
+bool Grid::ChooseBounds(
+  vtkAlgorithm* algorithm, const Atoms& atoms, const MoleculeSettings& settings)
 {
   const std::vector<double>& centers = atoms.Centers;
   const std::vector<double>& radii = atoms.Radii;
@@ -39,9 +40,10 @@ bool Grid::ChooseBounds(vtkAlgorithm* algorithm, const Atoms& atoms, const Molec
   {
     if (!(atomBox[2 * a + 1] - atomBox[2 * a] <= MaximumExtent))
     {
-      vtkErrorWithObjectMacro(algorithm, << "The atoms span " << atomBox[2 * a + 1] - atomBox[2 * a] << " Å along "
-                    << "axis " << a << ", more than " << MaximumExtent
-                    << " Å: coordinates in the wrong unit or a corrupt file?");
+      vtkErrorWithObjectMacro(algorithm, << "The atoms span " << atomBox[2 * a + 1] - atomBox[2 * a]
+                                         << " Å along "
+                                         << "axis " << a << ", more than " << MaximumExtent
+                                         << " Å: coordinates in the wrong unit or a corrupt file?");
       return false;
     }
   }
@@ -53,15 +55,16 @@ bool Grid::ChooseBounds(vtkAlgorithm* algorithm, const Atoms& atoms, const Molec
     for (int a = 0; a < 3; ++a)
     {
       cells *= std::ceil((atomBox[2 * a + 1] - atomBox[2 * a] + 2 * settings.NearDistance) /
-                 settings.CellSize) + 1;
+                 settings.CellSize) +
+        1;
     }
     cells = std::min(cells, double(1 << 21)); // MoleculeField's cap on its cells
     if (double(count) * cells > MaximumGlobalCost)
     {
-      vtkErrorWithObjectMacro(algorithm, << "Global mode for " << count << " atoms in a box of " << cells
-                    << " cells would sum about " << double(count) * cells
-                    << " far-field terms (the limit is " << MaximumGlobalCost
-                    << "): use Mode = Local, whose cost does not grow with the molecule");
+      vtkErrorWithObjectMacro(algorithm,
+        << "Global mode for " << count << " atoms in a box of " << cells
+        << " cells would sum about " << double(count) * cells << " far-field terms (the limit is "
+        << MaximumGlobalCost << "): use Mode = Local, whose cost does not grow with the molecule");
       return false;
     }
   }
@@ -102,9 +105,10 @@ bool Grid::ChooseBounds(vtkAlgorithm* algorithm, const Atoms& atoms, const Molec
     }
     if (attempt == 12)
     {
-      vtkWarningWithObjectMacro(algorithm, << "F is not positive on the whole boundary of the bounds even "
-                      << margin << " Å beyond the atoms: the mesh may be open (Blending "
-                      << settings.Blending << " is very large)");
+      vtkWarningWithObjectMacro(
+        algorithm, << "F is not positive on the whole boundary of the bounds even " << margin
+                   << " Å beyond the atoms: the mesh may be open (Blending " << settings.Blending
+                   << " is very large)");
       break;
     }
     margin *= 2;
@@ -137,12 +141,12 @@ bool Grid::ChooseGrid(
   const vtkIdType maximumSamples = vtkNew<vtkPiFlyingEdges>()->GetMaximumNumberOfSamples();
   if (!(samples <= static_cast<double>(maximumSamples)))
   {
-    vtkErrorWithObjectMacro(algorithm, << "A grid of " << cells[0] + 1 << " x " << cells[1] + 1 << " x "
-                  << cells[2] + 1 << " samples (Spacing " << spacing << " Å over a box of "
-                  << bounds[1] - bounds[0] << " x " << bounds[3] - bounds[2] << " x "
-                  << bounds[5] - bounds[4] << " Å) needs " << samples * sizeof(double) / (1 << 20)
-                  << " MiB; the limit is " << maximumSamples * sizeof(double) / (1 << 20)
-                  << " MiB: raise the Spacing (0 chooses it)");
+    vtkErrorWithObjectMacro(algorithm,
+      << "A grid of " << cells[0] + 1 << " x " << cells[1] + 1 << " x " << cells[2] + 1
+      << " samples (Spacing " << spacing << " Å over a box of " << bounds[1] - bounds[0] << " x "
+      << bounds[3] - bounds[2] << " x " << bounds[5] - bounds[4] << " Å) needs "
+      << samples * sizeof(double) / (1 << 20) << " MiB; the limit is "
+      << maximumSamples * sizeof(double) / (1 << 20) << " MiB: raise the Spacing (0 chooses it)");
     return false;
   }
   for (int a = 0; a < 3; ++a)
@@ -160,8 +164,8 @@ bool Grid::ChooseGrid(
   return true;
 }
 
-MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope,
-  bool projectVertices, int piece, int pieces, vtkPolyData* output)
+MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope, bool projectVertices,
+  int piece, int pieces, vtkPolyData* output)
 {
   vtkNew<vtkPiFlyingEdges> mesher;
   mesher->SetField(grid.Field);
@@ -177,10 +181,12 @@ MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope,
     std::string Error, Warning;
   } messages;
   forward->SetClientData(&messages);
-  forward->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
-    auto* m = static_cast<Messages*>(client);
-    (event == vtkCommand::ErrorEvent ? m->Error : m->Warning) = static_cast<const char*>(data);
-  });
+  forward->SetCallback(
+    [](vtkObject*, unsigned long event, void* client, void* data)
+    {
+      auto* m = static_cast<Messages*>(client);
+      (event == vtkCommand::ErrorEvent ? m->Error : m->Warning) = static_cast<const char*>(data);
+    });
   mesher->AddObserver(vtkCommand::ErrorEvent, forward);
   mesher->AddObserver(vtkCommand::WarningEvent, forward);
   // The mesher is most of the time: its progress is ours (from 0.05 to 0.95), and a

@@ -32,7 +32,8 @@ namespace
 // off). Threaded over fixed chunks of triangles whose sums are added in order: the same
 // bits with any number of threads.
 template <class Ids>
-void AreaAndVolumeOf(vtkPoints* points, Ids* offsets, Ids* connectivity, double& area, double& volume)
+void AreaAndVolumeOf(
+  vtkPoints* points, Ids* offsets, Ids* connectivity, double& area, double& volume)
 {
   vtkDoubleArray* coordinates = vtkDoubleArray::SafeDownCast(points->GetData());
   const vtkIdType cellCount = offsets->GetNumberOfValues() - 1;
@@ -41,45 +42,47 @@ void AreaAndVolumeOf(vtkPoints* points, Ids* offsets, Ids* connectivity, double&
   constexpr vtkIdType Chunk = 1 << 16;
   const vtkIdType chunks = (cellCount + Chunk - 1) / Chunk;
   std::vector<double> areas(chunks), volumes(chunks);
-  vtkSMPTools::For(0, chunks, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
+  vtkSMPTools::For(0, chunks,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      double a = 0.0, v = 0.0;
-      for (vtkIdType t = c * Chunk; t < std::min(cellCount, (c + 1) * Chunk); ++t)
+      for (vtkIdType c = begin; c < end; ++c)
       {
-        if (offset[t + 1] - offset[t] != 3)
+        double a = 0.0, v = 0.0;
+        for (vtkIdType t = c * Chunk; t < std::min(cellCount, (c + 1) * Chunk); ++t)
         {
-          continue; // the mesher makes triangles only
-        }
-        double p[3][3];
-        for (int m = 0; m < 3; ++m)
-        {
-          const vtkIdType id = static_cast<vtkIdType>(ids[offset[t] + m]);
-          if (coordinates)
+          if (offset[t + 1] - offset[t] != 3)
           {
-            const double* x = coordinates->GetPointer(3 * id);
-            p[m][0] = x[0];
-            p[m][1] = x[1];
-            p[m][2] = x[2];
+            continue; // the mesher makes triangles only
           }
-          else
+          double p[3][3];
+          for (int m = 0; m < 3; ++m)
           {
-            points->GetPoint(id, p[m]);
+            const vtkIdType id = static_cast<vtkIdType>(ids[offset[t] + m]);
+            if (coordinates)
+            {
+              const double* x = coordinates->GetPointer(3 * id);
+              p[m][0] = x[0];
+              p[m][1] = x[1];
+              p[m][2] = x[2];
+            }
+            else
+            {
+              points->GetPoint(id, p[m]);
+            }
           }
+          const double e1[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+          const double e2[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+          double n[3];
+          vtkMath::Cross(e1, e2, n);
+          a += 0.5 * vtkMath::Norm(n);
+          double q[3];
+          vtkMath::Cross(p[1], p[2], q);
+          v += vtkMath::Dot(p[0], q) / 6.0;
         }
-        const double e1[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
-        const double e2[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-        double n[3];
-        vtkMath::Cross(e1, e2, n);
-        a += 0.5 * vtkMath::Norm(n);
-        double q[3];
-        vtkMath::Cross(p[1], p[2], q);
-        v += vtkMath::Dot(p[0], q) / 6.0;
+        areas[c] = a;
+        volumes[c] = v;
       }
-      areas[c] = a;
-      volumes[c] = v;
-    }
-  });
+    });
   area = volume = 0.0;
   for (vtkIdType c = 0; c < chunks; ++c)
   {
@@ -93,19 +96,19 @@ void AreaAndVolume(vtkPolyData* mesh, double& area, double& volume)
   vtkCellArray* polys = mesh->GetPolys();
   if (polys->IsStorage64Bit())
   {
-    AreaAndVolumeOf(mesh->GetPoints(), polys->GetOffsetsArray64(),
-      polys->GetConnectivityArray64(), area, volume);
+    AreaAndVolumeOf(
+      mesh->GetPoints(), polys->GetOffsetsArray64(), polys->GetConnectivityArray64(), area, volume);
   }
   else
   {
-    AreaAndVolumeOf(mesh->GetPoints(), polys->GetOffsetsArray32(),
-      polys->GetConnectivityArray32(), area, volume);
+    AreaAndVolumeOf(
+      mesh->GetPoints(), polys->GetOffsetsArray32(), polys->GetConnectivityArray32(), area, volume);
   }
 }
 }
 
-void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& settings,
-  int pieces, vtkPolyData* output)
+void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& settings, int pieces,
+  vtkPolyData* output)
 {
   const vtkIdType count = atoms.Count();
   const std::vector<int>& numbers = atoms.Numbers;
@@ -120,13 +123,15 @@ void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& s
   AllocateLargeArray(atomicNumber.GetPointer(), points);
   int* numberOut = atomicNumber->GetPointer(0);
   const int* atomOf = factor ? factor->GetPointer(0) : nullptr;
-  vtkSMPTools::For(0, points, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType v = begin; v < end; ++v)
+  vtkSMPTools::For(0, points,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const int atom = atomOf ? atomOf[v] : -1;
-      numberOut[v] = atom >= 0 && atom < count ? numbers[atom] : 0;
-    }
-  });
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const int atom = atomOf ? atomOf[v] : -1;
+        numberOut[v] = atom >= 0 && atom < count ? numbers[atom] : 0;
+      }
+    });
   output->GetPointData()->AddArray(atomicNumber);
 
   vtkFieldData* fd = output->GetFieldData();
@@ -150,8 +155,8 @@ void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& s
   vtkNew<vtkDoubleArray> settingsOut;
   settingsOut->SetName("PiMoleculeSettings");
   settingsOut->SetNumberOfTuples(9);
-  const double settingValues[9] = { local ? 1.0 : 0.0, settings.Blending,
-    settings.InfluenceRadius, bounds[0], bounds[1], bounds[2], bounds[3], bounds[4], bounds[5] };
+  const double settingValues[9] = { local ? 1.0 : 0.0, settings.Blending, settings.InfluenceRadius,
+    bounds[0], bounds[1], bounds[2], bounds[3], bounds[4], bounds[5] };
   for (int k = 0; k < 9; ++k)
   {
     settingsOut->SetValue(k, settingValues[k]);

@@ -70,8 +70,8 @@ struct Grid
   /// PASS 3: `spacing` (0: AutomaticSpacing, coarser if the grid would exceed
   /// AutomaticMaximumPoints), the grid centred on the box with exactly that spacing,
   /// and the field's cells over it. Refuses grids over the mesher's sample cap.
-  bool ChooseGrid(vtkAlgorithm* algorithm, const Atoms& atoms, const MoleculeSettings& settings,
-    double spacing);
+  bool ChooseGrid(
+    vtkAlgorithm* algorithm, const Atoms& atoms, const MoleculeSettings& settings, double spacing);
 };
 
 /// PASS 4: the field meshed on the grid by vtkPiFlyingEdges (piece `piece` of `pieces`:
@@ -84,8 +84,8 @@ enum class MeshResult
   Cancelled,
   Meshed
 };
-MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope,
-  bool projectVertices, int piece, int pieces, vtkPolyData* output);
+MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope, bool projectVertices,
+  int piece, int pieces, vtkPolyData* output);
 
 /// PASS 5: the point array `AtomicNumber` (from the mesher's `Factor`, the nearest atom),
 /// the field data Pi Ray Cast, Image Based Triangulation and Pi Sample Function rebuild
@@ -93,8 +93,8 @@ MeshResult Mesh(vtkAlgorithm* algorithm, const Grid& grid, bool outerEnvelope,
 /// PiInputSurface.h), in Global mode up to MaximumJsonAtoms the model as
 /// `PiSurfaceModel`, and for a whole surface (one piece) `SurfaceArea` and
 /// `EnclosedVolume`.
-void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& settings,
-  int pieces, vtkPolyData* output);
+void WriteOutput(const Atoms& atoms, const Grid& grid, const MoleculeSettings& settings, int pieces,
+  vtkPolyData* output);
 }
 }
 

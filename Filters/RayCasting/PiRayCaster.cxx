@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PiRayCaster.h"
 
-#include "PiFloat.h"
 #include "PiField.h"
+#include "PiFloat.h"
 #include "PiProductKernel.h"
 
 #include <algorithm>
@@ -55,9 +55,8 @@ void RayCaster::CastRestricted(const double* coefficients, double t0, double t1,
     this->Kernel->GetBlending(), t0, t1, options, roots);
 }
 
-void RayCaster::CastRestricted(const double* coefficients, const double* cuts,
-  const int* monotone, int pieces, const RayRootOptions& options,
-  std::vector<RayRoot>& roots) const
+void RayCaster::CastRestricted(const double* coefficients, const double* cuts, const int* monotone,
+  int pieces, const RayRootOptions& options, std::vector<RayRoot>& roots) const
 {
   roots.clear();
   FindRayRoots(coefficients, this->Counts.data(), static_cast<int>(this->Counts.size()),
@@ -169,9 +168,15 @@ void RayGrid::Restrict(const std::vector<double>& row, int i, double* coefficien
     const double* h = row.data() + c.RowOffset;
     switch (c.Degree)
     {
-      case 2: RestrictComposed<2>(h, 2, x, coefficients); break;
-      case 4: RestrictComposed<4>(h, 4, x, coefficients); break;
-      default: RestrictComposed<0>(h, c.Degree, x, coefficients); break;
+      case 2:
+        RestrictComposed<2>(h, 2, x, coefficients);
+        break;
+      case 4:
+        RestrictComposed<4>(h, 4, x, coefficients);
+        break;
+      default:
+        RestrictComposed<0>(h, c.Degree, x, coefficients);
+        break;
     }
     coefficients += c.Degree + 1;
   }

@@ -33,8 +33,8 @@ public:
 
   /// Roots of F(start + t·d) on [0, length], in increasing t (d need not be unit; t is
   /// then in units of |d|). `options.AllRoots` false stops at the first.
-  void Cast(const double start[3], const double d[3], double length,
-    const RayRootOptions& options, std::vector<RayRoot>& roots) const;
+  void Cast(const double start[3], const double d[3], double length, const RayRootOptions& options,
+    std::vector<RayRoot>& roots) const;
 
   /// The attributes of a surface point (Field::ProbeVertex): unit normal, |∇F|, nearest
   /// factor; returns whether it is singular, i.e. whether
@@ -72,9 +72,9 @@ private:
     double& gradientNorm, int& nearest) const;
 
   const Field* TheField;
-  const ProductKernel* Kernel; // the field's fast paths, or null
+  const ProductKernel* Kernel;       // the field's fast paths, or null
   ProductKernel::ProbeBounds Probes; // Probe 0: not prepared
-  std::vector<int> Counts; // line coefficients per polynomial factor
+  std::vector<int> Counts;           // line coefficients per polynomial factor
   size_t LineCoefficients = 0;
 };
 

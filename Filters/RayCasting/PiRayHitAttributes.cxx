@@ -58,67 +58,68 @@ void RayHitAttributes::Compute(const std::vector<std::vector<RayHit>>& rows, Ray
   int* factorOut = this->Factor->GetPointer(0);
   const vtkIdType* rowOffsets = this->RowOffsets.data();
   // A row at a time (rows differ a lot in their number of hits: small chunks).
-  pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 4, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType r = begin; r < end; ++r)
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(rows.size()), 4,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const std::vector<RayHit>& row = rows[r];
-      // Four hits at a time (RayCaster::Attributes evaluates them side by side).
-      constexpr int Group = pisurf::ProductKernel::MaxVertices;
-      for (size_t first = 0; first < row.size(); first += Group)
+      for (vtkIdType r = begin; r < end; ++r)
       {
-        const int count = static_cast<int>(std::min<size_t>(Group, row.size() - first));
-        double p[Group][3], nrm[Group][3], g[Group];
-        int nearest[Group];
-        bool isSingular[Group];
-        for (int j = 0; j < count; ++j)
+        const std::vector<RayHit>& row = rows[r];
+        // Four hits at a time (RayCaster::Attributes evaluates them side by side).
+        constexpr int Group = pisurf::ProductKernel::MaxVertices;
+        for (size_t first = 0; first < row.size(); first += Group)
         {
-          std::copy(row[first + j].P, row[first + j].P + 3, p[j]);
-        }
-        // Singular: F grows faster than linearly away from the hit.
-        caster.Attributes(
-          count, p, probe, singularTolerance, nrm, g, nearest, isSingular);
-        for (int j = 0; j < count; ++j)
-        {
-          const RayHit& hit = row[first + j];
-          const vtkIdType k = rowOffsets[r] + static_cast<vtkIdType>(first) + j;
-          singularOut[k] = isSingular[j] ? 1 : 0;
-          for (int c = 0; c < 3; ++c)
+          const int count = static_cast<int>(std::min<size_t>(Group, row.size() - first));
+          double p[Group][3], nrm[Group][3], g[Group];
+          int nearest[Group];
+          bool isSingular[Group];
+          for (int j = 0; j < count; ++j)
           {
-            xyz[3 * k + c] = hit.P[c];
-            nrmOut[3 * k + c] = static_cast<float>(nrm[j][c]);
+            std::copy(row[first + j].P, row[first + j].P + 3, p[j]);
           }
-          gradientOut[k] = g[j];
-          depthOut[k] = hit.T;
-          pixelOut[2 * k] = hit.I;
-          pixelOut[2 * k + 1] = hit.J;
-          viewOut[k] = hit.View;
-          hitOut[k] = hit.Index;
-          tangentOut[k] = hit.Tangent ? 1 : 0;
-          factorOut[k] = nearest[j];
+          // Singular: F grows faster than linearly away from the hit.
+          caster.Attributes(count, p, probe, singularTolerance, nrm, g, nearest, isSingular);
+          for (int j = 0; j < count; ++j)
+          {
+            const RayHit& hit = row[first + j];
+            const vtkIdType k = rowOffsets[r] + static_cast<vtkIdType>(first) + j;
+            singularOut[k] = isSingular[j] ? 1 : 0;
+            for (int c = 0; c < 3; ++c)
+            {
+              xyz[3 * k + c] = hit.P[c];
+              nrmOut[3 * k + c] = static_cast<float>(nrm[j][c]);
+            }
+            gradientOut[k] = g[j];
+            depthOut[k] = hit.T;
+            pixelOut[2 * k] = hit.I;
+            pixelOut[2 * k + 1] = hit.J;
+            viewOut[k] = hit.View;
+            hitOut[k] = hit.Index;
+            tangentOut[k] = hit.Tangent ? 1 : 0;
+            factorOut[k] = nearest[j];
+          }
         }
       }
-    }
-  });
+    });
 }
 
 std::vector<vtkDataArray*> RayHitAttributes::Arrays() const
 {
-  return { this->Normals, this->Gradient, this->Depth, this->Pixel, this->ViewIndex,
-    this->HitIndex, this->Singular, this->Tangent, this->Factor };
+  return { this->Normals, this->Gradient, this->Depth, this->Pixel, this->ViewIndex, this->HitIndex,
+    this->Singular, this->Tangent, this->Factor };
 }
 
 void RayHitAttributes::ReleaseLargeRows(std::vector<std::vector<RayHit>>& rows)
 {
-// Kept for the next execution up to 256 MiB of hits (4 M hits: six 1024² views of
-// first hits, or a few all-hit ones); more is released rather than held.
-size_t keptBytes = 0;
-for (const std::vector<RayHit>& row : rows)
-{
-  keptBytes += row.capacity() * sizeof(RayHit);
-}
-if (keptBytes > (size_t(256) << 20))
-{
-  std::vector<std::vector<RayHit>>().swap(rows);
-}
+  // Kept for the next execution up to 256 MiB of hits (4 M hits: six 1024² views of
+  // first hits, or a few all-hit ones); more is released rather than held.
+  size_t keptBytes = 0;
+  for (const std::vector<RayHit>& row : rows)
+  {
+    keptBytes += row.capacity() * sizeof(RayHit);
+  }
+  if (keptBytes > (size_t(256) << 20))
+  {
+    std::vector<std::vector<RayHit>>().swap(rows);
+  }
 }
 }

@@ -46,49 +46,51 @@ void RayImage::Shade(const std::vector<RayView>& views, int w, int rowBegin, int
   // Image row r (view r / h, row rowBegin + r % h) is hit row r: each row is filled with
   // the background (white, no hit) and then given its first hits, in one pass over the
   // image (a first hit is the only one of its pixel).
-  pisurf::ParallelFor(0, vtkIdType(h) * count, 16, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType r = begin; r < end; ++r)
+  pisurf::ParallelFor(0, vtkIdType(h) * count, 16,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const RayView& v = views[static_cast<size_t>(r / h)];
-      const vtkIdType first = r * w;
-      std::fill(colour + 3 * first, colour + 3 * (first + w), static_cast<unsigned char>(255));
-      std::fill(depthOut + first, depthOut + first + w, -1.0);
-      for (vtkIdType k = rowOffsets[r]; k < rowOffsets[r + 1]; ++k)
+      for (vtkIdType r = begin; r < end; ++r)
       {
-        if (hitIndex[k] != 0)
+        const RayView& v = views[static_cast<size_t>(r / h)];
+        const vtkIdType first = r * w;
+        std::fill(colour + 3 * first, colour + 3 * (first + w), static_cast<unsigned char>(255));
+        std::fill(depthOut + first, depthOut + first + w, -1.0);
+        for (vtkIdType k = rowOffsets[r]; k < rowOffsets[r + 1]; ++k)
         {
-          continue;
+          if (hitIndex[k] != 0)
+          {
+            continue;
+          }
+          const int i = pixel[2 * k], j = pixel[2 * k + 1];
+          const vtkIdType id = first + i;
+          depthOut[id] = hitDepth[k];
+          unsigned char* rgbOut = colour + 3 * id;
+          if (isSingular[k])
+          {
+            rgbOut[0] = 220;
+            rgbOut[1] = 30;
+            rgbOut[2] = 30;
+            continue;
+          }
+          // A headlight: light along the ray, Lambert plus a Phong highlight, two-sided.
+          double d[3];
+          for (int c = 0; c < 3; ++c)
+          {
+            d[c] = v.Perspective ? v.D[c] + i * v.U[c] + j * v.V[c] : v.D[c];
+          }
+          vtkMath::Normalize(d);
+          const float* nf = nrm + 3 * k;
+          const double lambert = std::fabs(nf[0] * d[0] + nf[1] * d[1] + nf[2] * d[2]);
+          // (lambert^30 by squaring: a few multiplications instead of pow's logarithm)
+          const double l2 = lambert * lambert, l4 = l2 * l2, l8 = l4 * l4, l16 = l8 * l8;
+          const double value = 0.12 + 0.68 * lambert + 0.2 * (l16 * l8 * l4 * l2);
+          const unsigned char c = static_cast<unsigned char>(std::min(255.0, 255.0 * value));
+          rgbOut[0] = c;
+          rgbOut[1] = c;
+          rgbOut[2] = static_cast<unsigned char>(std::min(255, c + 12));
         }
-        const int i = pixel[2 * k], j = pixel[2 * k + 1];
-        const vtkIdType id = first + i;
-        depthOut[id] = hitDepth[k];
-        unsigned char* rgbOut = colour + 3 * id;
-        if (isSingular[k])
-        {
-          rgbOut[0] = 220;
-          rgbOut[1] = 30;
-          rgbOut[2] = 30;
-          continue;
-        }
-        // A headlight: light along the ray, Lambert plus a Phong highlight, two-sided.
-        double d[3];
-        for (int c = 0; c < 3; ++c)
-        {
-          d[c] = v.Perspective ? v.D[c] + i * v.U[c] + j * v.V[c] : v.D[c];
-        }
-        vtkMath::Normalize(d);
-        const float* nf = nrm + 3 * k;
-        const double lambert = std::fabs(nf[0] * d[0] + nf[1] * d[1] + nf[2] * d[2]);
-        // (lambert^30 by squaring: a few multiplications instead of pow's logarithm)
-        const double l2 = lambert * lambert, l4 = l2 * l2, l8 = l4 * l4, l16 = l8 * l8;
-        const double value = 0.12 + 0.68 * lambert + 0.2 * (l16 * l8 * l4 * l2);
-        const unsigned char c = static_cast<unsigned char>(std::min(255.0, 255.0 * value));
-        rgbOut[0] = c;
-        rgbOut[1] = c;
-        rgbOut[2] = static_cast<unsigned char>(std::min(255, c + 12));
       }
-    }
-  });
+    });
   image->GetPointData()->SetScalars(rgb);
   image->GetPointData()->AddArray(depth);
 }
@@ -106,8 +108,8 @@ void RayImage::MarkGhosts(const RayPieceRows& rows, int w, vtkImageData* image)
   for (vtkIdType id = 0; id < ghosts->GetNumberOfTuples(); ++id)
   {
     const int j = rowBegin + static_cast<int>((id / w) % rowsCast);
-    ghosts->SetValue(id, j >= pieceBegin && j < pieceEnd ? 0
-        : vtkDataSetAttributes::DUPLICATEPOINT);
+    ghosts->SetValue(
+      id, j >= pieceBegin && j < pieceEnd ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
   }
   image->GetPointData()->AddArray(ghosts);
 }

@@ -20,7 +20,10 @@ struct RayPieceRows
   static RayPieceRows Of(vtkInformationVector* outputVector, bool hasImage, int h);
 
   /// The cast holds rows beyond the piece's points.
-  bool ExtraRows() const { return this->RowBegin != this->PieceBegin || this->RowEnd != this->PieceEnd; }
+  bool ExtraRows() const
+  {
+    return this->RowBegin != this->PieceBegin || this->RowEnd != this->PieceEnd;
+  }
 };
 }
 

@@ -81,22 +81,25 @@ void RayPointOutput::SetVerts(vtkPolyData* output)
   // One vertex cell per point: offsets 0..kept and connectivity 0..kept−1, handed to
   // the cell array as they are (in its 32-bit storage when the ids fit).
   vtkNew<vtkCellArray> verts;
-  auto fillVerts = [&](auto* offsets, auto* ids) {
+  auto fillVerts = [&](auto* offsets, auto* ids)
+  {
     pisurf::AllocateLargeArray(offsets, kept + 1);
     pisurf::AllocateLargeArray(ids, kept);
     auto* offsetOut = offsets->GetPointer(0);
     auto* idOut = ids->GetPointer(0);
     using Id = typename std::remove_pointer<decltype(idOut)>::type;
-    vtkSMPTools::For(0, kept + 1, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType k = begin; k < end; ++k)
+    vtkSMPTools::For(0, kept + 1,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        offsetOut[k] = static_cast<Id>(k);
-        if (k < kept)
+        for (vtkIdType k = begin; k < end; ++k)
         {
-          idOut[k] = static_cast<Id>(k);
+          offsetOut[k] = static_cast<Id>(k);
+          if (k < kept)
+          {
+            idOut[k] = static_cast<Id>(k);
+          }
         }
-      }
-    });
+      });
     verts->SetData(offsets, ids);
   };
   if (kept < std::numeric_limits<std::int32_t>::max())

@@ -22,7 +22,8 @@ class RayPointOutput
 public:
   /// The hits of the piece's rows (all of them when the cast holds no other rows) as
   /// the output's points, point data and vertices.
-  static void SetPoints(const RayHitAttributes& hits, const RayPieceRows& rows, vtkPolyData* output);
+  static void SetPoints(
+    const RayHitAttributes& hits, const RayPieceRows& rows, vtkPolyData* output);
 
   /// Field data `PiRayViews`: 17 numbers per view (see vtkPiRayCaster.h).
   static void AddViews(const std::vector<RayView>& views, bool allHits, vtkPolyData* output);

@@ -144,17 +144,28 @@ void Split(const double* b, int count, double* left, double* right)
     // (the degrees of common products: quadrics and quartics, up to ten quadrics; the
     // unrolled loops also spare the branch predictor the general loop's varying trip
     // counts)
-    case 3: return SplitFixed<3>(b, left, right);
-    case 5: return SplitFixed<5>(b, left, right);
-    case 7: return SplitFixed<7>(b, left, right);
-    case 9: return SplitFixed<9>(b, left, right);
-    case 11: return SplitFixed<11>(b, left, right);
-    case 13: return SplitFixed<13>(b, left, right);
-    case 15: return SplitFixed<15>(b, left, right);
-    case 17: return SplitFixed<17>(b, left, right);
-    case 19: return SplitFixed<19>(b, left, right);
-    case 21: return SplitFixed<21>(b, left, right);
-    default: break;
+    case 3:
+      return SplitFixed<3>(b, left, right);
+    case 5:
+      return SplitFixed<5>(b, left, right);
+    case 7:
+      return SplitFixed<7>(b, left, right);
+    case 9:
+      return SplitFixed<9>(b, left, right);
+    case 11:
+      return SplitFixed<11>(b, left, right);
+    case 13:
+      return SplitFixed<13>(b, left, right);
+    case 15:
+      return SplitFixed<15>(b, left, right);
+    case 17:
+      return SplitFixed<17>(b, left, right);
+    case 19:
+      return SplitFixed<19>(b, left, right);
+    case 21:
+      return SplitFixed<21>(b, left, right);
+    default:
+      break;
   }
   double w[MaxDegree + 1];
   std::copy(b, b + count, w);
@@ -310,8 +321,8 @@ public:
   // The single root of a monotone piece with a sign change.
   double Refine(double a, double b, double va, double vb) const
   {
-    return BracketedRoot([this](double t) { return this->Compressed(t); }, a, b, va, vb,
-      this->Options.Tolerance, 0.0);
+    return BracketedRoot(
+      [this](double t) { return this->Compressed(t); }, a, b, va, vb, this->Options.Tolerance, 0.0);
   }
 
   void Run(double t0, double t1, std::vector<RayRoot>& roots)
@@ -329,8 +340,8 @@ public:
     pool.resize(this->Total);
     for (int i = 0; i < this->N; ++i)
     {
-      ToBernstein(this->Coefficients + this->W.Offsets[i], this->Counts[i], t0, t1,
-        this->W.Scratch, pool.data() + this->W.Offsets[i]);
+      ToBernstein(this->Coefficients + this->W.Offsets[i], this->Counts[i], t0, t1, this->W.Scratch,
+        pool.data() + this->W.Offsets[i]);
     }
     stack.push_back({ t0, t1, 0, 0 });
     while (!stack.empty())
@@ -430,8 +441,7 @@ constexpr int FastPad = 4;
 // of a bracket of width at most `width` (or a point where phi is exactly 0), as
 // BracketedRoot's, in a few steps instead of regula falsi's dozen.
 template <class Function>
-double NewtonRoot(
-  const Function& phid, double a, double b, double va, double width, double t)
+double NewtonRoot(const Function& phid, double a, double b, double va, double width, double t)
 {
   if (!(t > a && t < b))
   {
@@ -465,7 +475,8 @@ double NewtonRoot(
     if (std::isfinite(next) && std::fabs(step) < 0.25 * width)
     {
       // Close: [t, u] around the predicted root, u a quarter width beyond it.
-      const double u = step < 0 ? std::min(next + 0.25 * width, b) : std::max(next - 0.25 * width, a);
+      const double u =
+        step < 0 ? std::min(next + 0.25 * width, b) : std::max(next - 0.25 * width, a);
       double du;
       const double vu = phid(u, du);
       if (vu == 0.0)
@@ -544,7 +555,7 @@ inline double ProductMinusWithSlope(const double* coefficients, const int* count
   double r, double t, double& derivative)
 {
   double v = 1.0, dv = 0.0;
-  for (int i = 0, offset = 0; i < factors; offset += Count > 0 ? Count : counts[i], ++i)
+  for (int i = 0, offset = 0; i<factors; offset += Count> 0 ? Count : counts[i], ++i)
   {
     const double* c = coefficients + offset;
     double f, df;
@@ -557,9 +568,15 @@ inline double ProductMinusWithSlope(const double* coefficients, const int* count
       switch (counts[i])
       {
         // (Literal counts for quadrics and quartics: the loop unrolls once inlined.)
-        case 3: f = EvaluateUnivariateWithDerivative(c, 3, t, df); break;
-        case 5: f = EvaluateUnivariateWithDerivative(c, 5, t, df); break;
-        default: f = EvaluateUnivariateWithDerivative(c, counts[i], t, df); break;
+        case 3:
+          f = EvaluateUnivariateWithDerivative(c, 3, t, df);
+          break;
+        case 5:
+          f = EvaluateUnivariateWithDerivative(c, 5, t, df);
+          break;
+        default:
+          f = EvaluateUnivariateWithDerivative(c, counts[i], t, df);
+          break;
       }
     }
     dv = dv * f + v * df;
@@ -581,16 +598,12 @@ inline double ProductNewtonRoot(const double* coefficients, const int* counts, i
   }
   if (quadratics)
   {
-    return NewtonRoot(
-      [&](double x, double& derivative) {
-        return ProductMinusWithSlope<3>(coefficients, counts, factors, r, x, derivative);
-      },
+    return NewtonRoot([&](double x, double& derivative)
+      { return ProductMinusWithSlope<3>(coefficients, counts, factors, r, x, derivative); },
       a, b, va, width, t);
   }
-  return NewtonRoot(
-    [&](double x, double& derivative) {
-      return ProductMinusWithSlope<0>(coefficients, counts, factors, r, x, derivative);
-    },
+  return NewtonRoot([&](double x, double& derivative)
+    { return ProductMinusWithSlope<0>(coefficients, counts, factors, r, x, derivative); },
     a, b, va, width, t);
 }
 
@@ -660,8 +673,8 @@ constexpr int QuickFactors = 16;
 // of 0 (F's true minimum above 0 by less than 1e-12 of F) is excluded here. With
 // options.Monotone (the caller proved F monotone on the segment) the enclosures are
 // skipped: the ends decide as in the monotone case.
-bool QuickSegment(const double* coefficients, const int* counts, int factors, double r,
-  double t0, double t1, const RayRootOptions& options, RootCluster& cluster, bool& found)
+bool QuickSegment(const double* coefficients, const int* counts, int factors, double r, double t0,
+  double t1, const RayRootOptions& options, RootCluster& cluster, bool& found)
 {
   found = false;
   if (factors > QuickFactors || factors == 0 || !(t1 > t0))
@@ -682,9 +695,15 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
       switch (d)
       {
         // (The usual degrees with the loops unrolled: the same operations.)
-        case 2: CentredForm<2>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
-        case 4: CentredForm<4>(coefficients + offset, m, am, h, q, M, f[i], df[i]); break;
-        default: CentredForm<-1>(coefficients + offset, m, am, h, q, M, f[i], df[i], d); break;
+        case 2:
+          CentredForm<2>(coefficients + offset, m, am, h, q, M, f[i], df[i]);
+          break;
+        case 4:
+          CentredForm<4>(coefficients + offset, m, am, h, q, M, f[i], df[i]);
+          break;
+        default:
+          CentredForm<-1>(coefficients + offset, m, am, h, q, M, f[i], df[i], d);
+          break;
       }
       const double fm = std::max(std::fabs(f[i].Lo), std::fabs(f[i].Hi));
       const double dm = std::max(std::fabs(df[i].Lo), std::fabs(df[i].Hi));
@@ -716,7 +735,8 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
   }
   // Monotone: F at the ends, with a bound on each evaluation's rounding (Horner of |c|
   // at |t| bounds every term; γ as above, for the products too).
-  auto valueAt = [&](double t, double& bound) {
+  auto valueAt = [&](double t, double& bound)
+  {
     double v = 1.0, a = 1.0;
     const double at = std::fabs(t);
     int n = 0;
@@ -726,9 +746,15 @@ bool QuickSegment(const double* coefficients, const int* counts, int factors, do
       double fi, ai;
       switch (counts[i])
       {
-        case 3: fi = HornerWithMagnitude<3>(c, 3, t, at, ai); break;
-        case 5: fi = HornerWithMagnitude<5>(c, 5, t, at, ai); break;
-        default: fi = HornerWithMagnitude<0>(c, counts[i], t, at, ai); break;
+        case 3:
+          fi = HornerWithMagnitude<3>(c, 3, t, at, ai);
+          break;
+        case 5:
+          fi = HornerWithMagnitude<5>(c, 5, t, at, ai);
+          break;
+        default:
+          fi = HornerWithMagnitude<0>(c, counts[i], t, at, ai);
+          break;
       }
       v *= fi;
       a *= ai;
@@ -838,9 +864,9 @@ inline bool BernsteinFactor(const double* c, int degree, double t0, double t1,
   return true;
 }
 
-bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r,
-  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots,
-  RootCluster& cluster, int level)
+bool FastRayRoots(const double* coefficients, const int* counts, int factors, double r, double t0,
+  double t1, const RayRootOptions& options, std::vector<RayRoot>& roots, RootCluster& cluster,
+  int level)
 {
   int degree = 0, total = 0;
   for (int i = 0; i < factors; ++i)
@@ -1022,8 +1048,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
             break;
           }
         }
-        cluster.Add(ProductNewtonRoot(scaled, counts, factors, rs, p.A, p.B, va,
-                      options.Tolerance, p.A + start * (p.B - p.A)),
+        cluster.Add(ProductNewtonRoot(scaled, counts, factors, rs, p.A, p.B, va, options.Tolerance,
+                      p.A + start * (p.B - p.A)),
           false, va, vb);
       }
       else if (va == 0.0 || vb == 0.0)
@@ -1043,8 +1069,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
       // whose terms are the piece's own size, decides it (the general path if that
       // cannot or after FastLevels expansions).
       if (!(level + 1 < FastLevels &&
-            FastRayRoots(coefficients, counts, factors, r, p.A, p.B, options, roots, cluster,
-              level + 1)))
+            FastRayRoots(
+              coefficients, counts, factors, r, p.A, p.B, options, roots, cluster, level + 1)))
       {
         Solver(coefficients, counts, factors, r, options, GeneralWorkspace())
           .Run(p.A, p.B, cluster, roots);
@@ -1078,8 +1104,8 @@ bool FastRayRoots(const double* coefficients, const int* counts, int factors, do
 }
 }
 
-bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
-  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r, double t0,
+  double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
 {
   const double cuts[2] = { t0, t1 };
   const int monotone = options.Monotone ? 1 : 0;
@@ -1153,8 +1179,8 @@ bool FindRayRoots(const double* coefficients, const int* counts, int factors, do
   return true;
 }
 
-bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0,
-  double t1, const RayRootOptions& options, std::vector<RayRoot>& roots)
+bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0, double t1,
+  const RayRootOptions& options, std::vector<RayRoot>& roots)
 {
   std::vector<double> flat;
   std::vector<int> counts;
@@ -1163,7 +1189,7 @@ bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, dou
     flat.insert(flat.end(), f.begin(), f.end());
     counts.push_back(static_cast<int>(f.size()));
   }
-  return FindRayRoots(flat.data(), counts.data(), static_cast<int>(counts.size()), r, t0, t1,
-    options, roots);
+  return FindRayRoots(
+    flat.data(), counts.data(), static_cast<int>(counts.size()), r, t0, t1, options, roots);
 }
 }

@@ -144,8 +144,8 @@ public:
       this->AllTangent = this->AllTangent && tangent;
       RayRoot& root = this->Roots.back();
       root.T = 0.5 * (this->First + this->Last);
-      root.Tangent = this->Before != 0.0 && after != 0.0 ? (this->Before > 0) == (after > 0)
-                                                         : this->AllTangent;
+      root.Tangent =
+        this->Before != 0.0 && after != 0.0 ? (this->Before > 0) == (after > 0) : this->AllTangent;
       return;
     }
     this->Roots.push_back({ t, tangent });
@@ -164,13 +164,13 @@ private:
 
 /// Roots of Π p_i(t) − r on [t0, t1], in increasing t. `factors[i]` holds the ascending
 /// coefficients of p_i. Returns false (roots untouched) if an input is not finite.
-bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0,
-  double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
+bool FindRayRoots(const std::vector<std::vector<double>>& factors, double r, double t0, double t1,
+  const RayRootOptions& options, std::vector<RayRoot>& roots);
 /// The same with the factors' coefficients concatenated (`counts[i]` of them for p_i),
 /// as ProductKernel::RestrictLine writes them. Allocation-free after warm-up (per-thread
 /// work buffers), for casting millions of rays.
-bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r,
-  double t0, double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
+bool FindRayRoots(const double* coefficients, const int* counts, int factors, double r, double t0,
+  double t1, const RayRootOptions& options, std::vector<RayRoot>& roots);
 /// The same on the segment [cuts[0], cuts[pieces]] cut into `pieces` pieces
 /// [cuts[k], cuts[k + 1]] (increasing), each with its own RayRootOptions::Monotone
 /// (monotone[k]; options.Monotone is ignored). The roots of all pieces, in increasing t,

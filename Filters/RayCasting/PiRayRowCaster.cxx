@@ -43,8 +43,8 @@ bool Clip(const double o[3], const double d[3], const double b[6], double& t0, d
 
 // (Cast and operator() are inline, as when they were defined in the class, so that the
 // compiler weighs inlining them into the loops over rows and rays as it did there.)
-inline void RayRowCaster::Cast(const RayView& v, int viewIndex, int i, int j, std::vector<RayHit>& out,
-  Buffers& buffers, const RayGrid* grid) const
+inline void RayRowCaster::Cast(const RayView& v, int viewIndex, int i, int j,
+  std::vector<RayHit>& out, Buffers& buffers, const RayGrid* grid) const
 {
   double o[3], d[3];
   double t0 = 0, t1 = v.Length;
@@ -102,7 +102,8 @@ inline void RayRowCaster::Cast(const RayView& v, int viewIndex, int i, int j, st
   // each with its own monotony; the cuts in the grid's parameter s)
   std::vector<double>& cuts = buffers.Cuts;
   std::vector<int>& monotony = buffers.Monotony;
-  auto search = [&](double a, double b, int pieces = 1) {
+  auto search = [&](double a, double b, int pieces = 1)
+  {
     if (grid)
     {
       if (pieces > 1)

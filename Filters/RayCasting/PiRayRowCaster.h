@@ -30,10 +30,10 @@ struct RayRowCaster
   std::vector<std::vector<RayHit>>* Rows; // per (view, j)
   const RayCaster* Caster;
   const std::vector<std::unique_ptr<RayGrid>>* Grids; // per view; null: per ray
-  const std::vector<RayViewSkipping>* Skipping; // per view
-  vtkAlgorithm* Algorithm; // for the progress and the abort check
+  const std::vector<RayViewSkipping>* Skipping;       // per view
+  vtkAlgorithm* Algorithm;                            // for the progress and the abort check
   std::atomic<bool>* Abort;
-  int RowBegin, RowEnd; // the image rows [RowBegin, RowEnd) of every view
+  int RowBegin, RowEnd;             // the image rows [RowBegin, RowEnd) of every view
   std::atomic<vtkIdType>* Finished; // rows cast so far, for the progress
   vtkIdType RowCount;
 

@@ -14,8 +14,7 @@
 namespace pisurf
 {
 void RaySkipping::Build(const ProductKernel& kernel, const std::vector<RayView>& views,
-  const double b[6], int rowBegin, int rowEnd, bool allHits,
-  std::vector<RayViewSkipping>& skipping)
+  const double b[6], int rowBegin, int rowEnd, bool allHits, std::vector<RayViewSkipping>& skipping)
 {
   for (size_t k = 0; k < views.size(); ++k)
   {
@@ -103,31 +102,33 @@ void RaySkipping::Tiles(const ProductKernel& kernel, const RayView& v, int axis,
   tileOffsets.resize(tileCount);
   tileRanges.resize(tileCount);
   // (one tile per task: a tile's cost depends on how much of the model it sees)
-  pisurf::ParallelFor(0, tileCount, 1, [&](vtkIdType begin, vtkIdType end) {
-    RayTileOctree octree;
-    octree.Kernel = &kernel;
-    octree.V = &v;
-    octree.Axis = axis;
-    octree.U = (axis + 1) % 3;
-    octree.W = (axis + 2) % 3;
-    octree.PixelSize = std::max(vtkMath::Norm(v.U), vtkMath::Norm(v.V));
-    octree.RowBegin = rowBegin;
-    octree.RowEnd = rowEnd;
-    // (axis views only: a camera's boxes reach beyond the bounds, where its rays,
-    // clipped to them, do not search, so a sign change there proves no hit)
-    octree.FirstHit = !allHits && axis >= 0;
-    for (vtkIdType id = begin; id < end; ++id)
+  pisurf::ParallelFor(0, tileCount, 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      octree.TileI = static_cast<int>(id % tw) * RayTileSize;
-      octree.TileJ = (tileRowBegin + static_cast<int>(id / tw)) * RayTileSize;
-      octree.Leaves.clear();
-      octree.ResetCuts();
-      octree.Visit(octree.TileI, octree.TileJ, RayTileSize, s0, s1);
-      // Counting sort by column (stable: each column keeps increasing depth), merging
-      // ranges that touch.
-      MergeColumns(octree.Leaves, tileOffsets[id], tileRanges[id]);
-    }
-  });
+      RayTileOctree octree;
+      octree.Kernel = &kernel;
+      octree.V = &v;
+      octree.Axis = axis;
+      octree.U = (axis + 1) % 3;
+      octree.W = (axis + 2) % 3;
+      octree.PixelSize = std::max(vtkMath::Norm(v.U), vtkMath::Norm(v.V));
+      octree.RowBegin = rowBegin;
+      octree.RowEnd = rowEnd;
+      // (axis views only: a camera's boxes reach beyond the bounds, where its rays,
+      // clipped to them, do not search, so a sign change there proves no hit)
+      octree.FirstHit = !allHits && axis >= 0;
+      for (vtkIdType id = begin; id < end; ++id)
+      {
+        octree.TileI = static_cast<int>(id % tw) * RayTileSize;
+        octree.TileJ = (tileRowBegin + static_cast<int>(id / tw)) * RayTileSize;
+        octree.Leaves.clear();
+        octree.ResetCuts();
+        octree.Visit(octree.TileI, octree.TileJ, RayTileSize, s0, s1);
+        // Counting sort by column (stable: each column keeps increasing depth), merging
+        // ranges that touch.
+        MergeColumns(octree.Leaves, tileOffsets[id], tileRanges[id]);
+      }
+    });
 }
 
 void RaySkipping::MergeColumns(const std::vector<std::pair<int, RayDepthRange>>& leaves,
@@ -159,8 +160,7 @@ void RaySkipping::MergeColumns(const std::vector<std::pair<int, RayDepthRange>>&
       // (Overlapping ranges are merged whatever their monotony.)
       const bool touches = kept > first && ranges.back().End >= sorted[m].Start;
       if (touches &&
-        (ranges.back().Monotone == sorted[m].Monotone ||
-          ranges.back().End > sorted[m].Start))
+        (ranges.back().Monotone == sorted[m].Monotone || ranges.back().End > sorted[m].Start))
       {
         ranges.back().End = std::max(ranges.back().End, sorted[m].End);
         // (F monotone the same way on both parts is so on their union)
@@ -195,9 +195,11 @@ void RaySkipping::Gather(const RayView& v, int rowBegin, int rowEnd,
   const int columnRows = ((v.H + RayTileSize - 1) / RayTileSize) * (RayTileSize / RayLeafSize);
   view.Offsets.assign(static_cast<size_t>(view.Columns) * columnRows + 1, 0);
   // The view's column of column c of tile `id`.
-  auto column = [&](int id, int c) {
+  auto column = [&](int id, int c)
+  {
     const int ci = (id % tw) * (RayTileSize / RayLeafSize) + c % (RayTileSize / RayLeafSize);
-    const int cj = (tileRowBegin + id / tw) * (RayTileSize / RayLeafSize) + c / (RayTileSize / RayLeafSize);
+    const int cj =
+      (tileRowBegin + id / tw) * (RayTileSize / RayLeafSize) + c / (RayTileSize / RayLeafSize);
     return static_cast<size_t>(cj) * view.Columns + ci;
   };
   for (int id = 0; id < tileCount; ++id)

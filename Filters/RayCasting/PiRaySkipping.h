@@ -66,8 +66,8 @@ struct RayDepthRange
 // Per view: the leaf columns' depth ranges (CSR by column, row-major over columns).
 struct RayViewSkipping
 {
-  bool Active = false; // false: every ray searches its whole segment
-  int Columns = 0;     // leaf columns per image row of columns
+  bool Active = false;      // false: every ray searches its whole segment
+  int Columns = 0;          // leaf columns per image row of columns
   std::vector<int> Offsets; // Columns·rows of columns + 1
   std::vector<RayDepthRange> Ranges;
 };
@@ -87,11 +87,10 @@ public:
 private:
   // The depths [s0, s1] where the view's rays can meet the bounds, and the world axis of
   // an axis view's depth (−1 for a camera); false when no ray can.
-  static bool DepthExtent(
-    const RayView& v, const double b[6], double& s0, double& s1, int& axis);
+  static bool DepthExtent(const RayView& v, const double b[6], double& s0, double& s1, int& axis);
   // Per tile of rows [rowBegin, rowEnd), its columns' ranges (CSR by column in the tile).
-  static void Tiles(const ProductKernel& kernel, const RayView& v, int axis, double s0,
-    double s1, int rowBegin, int rowEnd, bool allHits, std::vector<std::vector<int>>& tileOffsets,
+  static void Tiles(const ProductKernel& kernel, const RayView& v, int axis, double s0, double s1,
+    int rowBegin, int rowEnd, bool allHits, std::vector<std::vector<int>>& tileOffsets,
     std::vector<std::vector<RayDepthRange>>& tileRanges);
   // A tile's leaves sorted by column (each column in increasing depth), touching ranges
   // merged: `offsets` and `ranges`, the tile's CSR.

@@ -25,8 +25,8 @@ struct RayTileOctree
   // Axis views: the world axes of the depth, of i and of j (their boxes' octants are
   // their children). Camera views: Axis = −1 (each child's box is classified itself).
   int Axis, U, W;
-  double PixelSize;         // the larger of the pixel's two world sizes (at depth 1)
-  int RowBegin, RowEnd;     // the image rows this piece casts
+  double PixelSize;     // the larger of the pixel's two world sizes (at depth 1)
+  int RowBegin, RowEnd; // the image rows this piece casts
   // The tile's undecided leaves as (column in the tile, range), in visiting order.
   std::vector<std::pair<int, RayDepthRange>> Leaves;
   int TileI = 0, TileJ = 0;
@@ -76,17 +76,19 @@ struct RayTileOctree
     {
       return;
     }
-    this->AllColumns(i0, j0, size, [&](int c) {
-      if (this->FirstSign[c] == 0)
+    this->AllColumns(i0, j0, size,
+      [&](int c)
       {
-        this->FirstSign[c] = static_cast<signed char>(sign);
-      }
-      else if (this->FirstSign[c] != sign && ta < this->Cut[c])
-      {
-        this->Cut[c] = ta;
-      }
-      return true;
-    });
+        if (this->FirstSign[c] == 0)
+        {
+          this->FirstSign[c] = static_cast<signed char>(sign);
+        }
+        else if (this->FirstSign[c] != sign && ta < this->Cut[c])
+        {
+          this->Cut[c] = ta;
+        }
+        return true;
+      });
   }
 
   // True when every ray of the node has its first root before depth ta.
@@ -189,7 +191,8 @@ struct RayTileOctree
         {
           for (int ih = 0; ih < 2; ++ih)
           {
-            this->Visit(i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
+            this->Visit(
+              i0 + ih * half, j0 + jh * half, half, front ? ta : mid, front ? mid : tb, level);
           }
         }
       }
@@ -237,8 +240,8 @@ struct RayTileOctree
 
   void AddLeaf(int i0, int j0, double ta, double tb, int monotone)
   {
-    const int column =
-      ((j0 - this->TileJ) / RayLeafSize) * (RayTileSize / RayLeafSize) + (i0 - this->TileI) / RayLeafSize;
+    const int column = ((j0 - this->TileJ) / RayLeafSize) * (RayTileSize / RayLeafSize) +
+      (i0 - this->TileI) / RayLeafSize;
     if (this->FirstHit && this->Cut[column] <= ta)
     {
       return;

@@ -82,8 +82,7 @@ RayView RayViews::AxisView(int axis, bool plus, int w, int h, const double b[6])
   return view;
 }
 
-bool RayViews::CameraView(
-  int w, int h, const RayCamera& camera, RayView& view, std::string& error)
+bool RayViews::CameraView(int w, int h, const RayCamera& camera, RayView& view, std::string& error)
 {
   double dir[3], up[3], right[3];
   for (int k = 0; k < 3; ++k)

@@ -37,8 +37,7 @@ public:
 private:
   // Axis view along world axis `axis` (towards +axis when `plus`).
   static RayView AxisView(int axis, bool plus, int w, int h, const double b[6]);
-  static bool CameraView(
-    int w, int h, const RayCamera& camera, RayView& view, std::string& error);
+  static bool CameraView(int w, int h, const RayCamera& camera, RayView& view, std::string& error);
 };
 }
 

@@ -42,7 +42,8 @@ void BestView::SortHits()
   {
     pixelStart[v + 1] = pixelStart[v] + vtkIdType(T.Views[v].W) * T.Views[v].H;
   }
-  auto pixelOf = [&](vtkIdType id) {
+  auto pixelOf = [&](vtkIdType id)
+  {
     const View& v = T.Views[C.ViewOf[id]];
     return pixelStart[C.ViewOf[id]] + vtkIdType(C.Pixel[2 * id + 1]) * v.W + C.Pixel[2 * id];
   };
@@ -64,29 +65,33 @@ void BestView::SortHits()
       hits[fill[pixelOf(id)]++] = id;
     }
   }
-  vtkSMPTools::For(0, pixels, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType p = b; p < e; ++p)
+  vtkSMPTools::For(0, pixels,
+    [&](vtkIdType b, vtkIdType e)
     {
-      std::sort(hits.begin() + first[p], hits.begin() + first[p + 1],
-        [&](vtkIdType x, vtkIdType y) { return C.Depth[x] < C.Depth[y]; });
-    }
-  });
+      for (vtkIdType p = b; p < e; ++p)
+      {
+        std::sort(hits.begin() + first[p], hits.begin() + first[p + 1],
+          [&](vtkIdType x, vtkIdType y) { return C.Depth[x] < C.Depth[y]; });
+      }
+    });
 }
 
 void BestView::ComputeFacing()
 {
   auto& facingOf = this->FacingOf;
   facingOf.resize(C.N);
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+  vtkSMPTools::For(0, C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const View& v = T.Views[C.ViewOf[id]];
-      double o[3], d[3];
-      v.Ray(C.Pixel[2 * id], C.Pixel[2 * id + 1], o, d);
-      facingOf[id] =
-        C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2];
-    }
-  });
+      for (vtkIdType id = b; id < e; ++id)
+      {
+        const View& v = T.Views[C.ViewOf[id]];
+        double o[3], d[3];
+        v.Ray(C.Pixel[2 * id], C.Pixel[2 * id + 1], o, d);
+        facingOf[id] =
+          C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2];
+      }
+    });
 }
 
 void BestView::Own(vtkIdType b, vtkIdType e)
@@ -114,8 +119,8 @@ void BestView::Own(vtkIdType b, vtkIdType e)
       }
       double o[3], d[3];
       v.Ray(fi, fj, o, d);
-      const double c = std::fabs(C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] +
-        C.Normal[3 * id + 2] * d[2]);
+      const double c = std::fabs(
+        C.Normal[3 * id] * d[0] + C.Normal[3 * id + 1] * d[1] + C.Normal[3 * id + 2] * d[2]);
       if (c <= bestCos)
       {
         continue;
@@ -159,7 +164,8 @@ inline bool BestView::Linked(vtkIdType a, vtkIdType b) const
     return false;
   }
   const double tolerance = this->SheetTolerance * v.Footprint(0.5 * (C.Depth[a] + C.Depth[b]));
-  auto predicted = [&](vtkIdType x, vtkIdType y) {
+  auto predicted = [&](vtkIdType x, vtkIdType y)
+  {
     // |depth where y's ray meets x's tangent plane − y's depth|, over the tolerance
     // grown as the plane turns away from the view (a tangent plane predicts a depth
     // change of footprint·tan θ, and its error grows like 1/cos θ), at most 4 times.
@@ -185,7 +191,8 @@ inline bool BestView::Linked(vtkIdType a, vtkIdType b) const
   }
   if (C.Singular[a] && C.Singular[b])
   {
-    error = std::sqrt(vtkMath::Distance2BetweenPoints(C.P.data() + 3 * a, C.P.data() + 3 * b)) - 2 * tolerance;
+    error = std::sqrt(vtkMath::Distance2BetweenPoints(C.P.data() + 3 * a, C.P.data() + 3 * b)) -
+      2 * tolerance;
   }
   return error <= tolerance;
 }
@@ -222,12 +229,14 @@ void BestView::Triangulate()
     }
   }
   this->RowTriangles.resize(rows.size());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()), [&](vtkIdType rb, vtkIdType re) {
-    for (vtkIdType r = rb; r < re && !T.Aborted(); ++r)
+  vtkSMPTools::For(0, static_cast<vtkIdType>(rows.size()),
+    [&](vtkIdType rb, vtkIdType re)
     {
-      this->Row(r);
-    }
-  });
+      for (vtkIdType r = rb; r < re && !T.Aborted(); ++r)
+      {
+        this->Row(r);
+      }
+    });
   T.Rows = std::move(this->RowTriangles);
 }
 
@@ -241,7 +250,8 @@ void BestView::Row(vtkIdType r)
   const int v = static_cast<int>(rows[r].first), j = rows[r].second;
   const View& view = T.Views[v];
   std::vector<std::int64_t>& tris = this->RowTriangles[r];
-  auto emit = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+  auto emit = [&](vtkIdType a, vtkIdType b, vtkIdType c)
+  {
     if (owner[a] == v && owner[b] == v && owner[c] == v)
     {
       tris.push_back(a);
@@ -260,7 +270,8 @@ void BestView::Row(vtkIdType r)
     for (vtkIdType k = first[px[0]]; k < first[px[0] + 1]; ++k)
     {
       const vtkIdType a = hits[k];
-      const vtkIdType m1 = this->Match(a, px[1]), m2 = this->Match(a, px[2]), m3 = this->Match(a, px[3]);
+      const vtkIdType m1 = this->Match(a, px[1]), m2 = this->Match(a, px[2]),
+                      m3 = this->Match(a, px[3]);
       if (m1 >= 0 && m2 >= 0 && m3 >= 0)
       {
         // The diagonal through a singular corner, else the shorter one.

@@ -31,13 +31,15 @@ std::unique_ptr<vtkIdType[]> HiddenComponents::Run(vtkIdType& count)
   this->Marked.reset(new std::atomic<unsigned char>[computedCount]);
   auto& parent = this->Parent;
   auto& marked = this->Marked;
-  vtkSMPTools::For(0, computedCount, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  vtkSMPTools::For(0, computedCount,
+    [&](vtkIdType b, vtkIdType e)
     {
-      parent[k].store(k, std::memory_order_relaxed);
-      marked[k].store(0, std::memory_order_relaxed);
-    }
-  });
+      for (vtkIdType k = b; k < e; ++k)
+      {
+        parent[k].store(k, std::memory_order_relaxed);
+        marked[k].store(0, std::memory_order_relaxed);
+      }
+    });
   // The computed points of triangles with a hit are visible; triangles of computed
   // points only join their points.
   vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) { this->Join(b, e); });
@@ -57,12 +59,14 @@ std::unique_ptr<vtkIdType[]> HiddenComponents::Run(vtkIdType& count)
   // point of a dropped component (negative: not in the output, as a point no triangle
   // uses).
   std::unique_ptr<vtkIdType[]> newId(new vtkIdType[total]);
-  vtkSMPTools::For(0, total, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  vtkSMPTools::For(0, total,
+    [&](vtkIdType b, vtkIdType e)
     {
-      newId[k] = k < usedHits || visible[this->Find(k - usedHits)] ? -1 : -2;
-    }
-  });
+      for (vtkIdType k = b; k < e; ++k)
+      {
+        newId[k] = k < usedHits || visible[this->Find(k - usedHits)] ? -1 : -2;
+      }
+    });
   parent.reset();
   vtkIdType n = 0;
   for (const std::vector<std::int64_t>& row : this->Rows)

@@ -29,13 +29,14 @@ bool HitLattice::Run(pisurf::PassTimer& lap)
   lap("lines filled");
   this->HiddenCount.reset(new std::int32_t[lines]);
   this->PrepareGrids();
-  pisurf::ParallelFor(0, lines, 2048, [&](vtkIdType begin, vtkIdType end) { this->CastHidden(begin, end); });
+  pisurf::ParallelFor(
+    0, lines, 2048, [&](vtkIdType begin, vtkIdType end) { this->CastHidden(begin, end); });
   lap("sorted lines, hidden parts cast");
   if (this->MissingModel)
   {
-    vtkErrorWithObjectMacro(T.Algorithm,
-      << "First-hit views hide part of the surface, and the input carries no "
-         "PiSurfaceModel to compute it: use all hits or keep the model field data");
+    vtkErrorWithObjectMacro(
+      T.Algorithm, << "First-hit views hide part of the surface, and the input carries no "
+                      "PiSurfaceModel to compute it: use all hits or keep the model field data");
     T.Abort = true;
   }
   if (T.Abort)
@@ -48,7 +49,8 @@ bool HitLattice::Run(pisurf::PassTimer& lap)
   // (small ranges of lines: the hidden roots, whose attributes cost most here, crowd on
   // the lines through the solid's hidden parts, and eight ranges per thread would leave
   // one thread working alone at the end)
-  pisurf::ParallelFor(0, lines, 2048, [&](vtkIdType lb, vtkIdType le) { this->MergeLines(lb, le); });
+  pisurf::ParallelFor(
+    0, lines, 2048, [&](vtkIdType lb, vtkIdType le) { this->MergeLines(lb, le); });
   this->Hidden.reset();
   this->Samples.reset();
   lap("lines merged");
@@ -60,39 +62,47 @@ void HitLattice::FillLines()
   const vtkIdType lines = this->LineCount;
   this->First.reset(new std::atomic<vtkIdType>[lines + 1]);
   auto& first = this->First;
-  auto lineOf = [&](vtkIdType id) {
+  auto lineOf = [&](vtkIdType id)
+  {
     const View& v = T.Views[T.C.ViewOf[id]];
     return L.Line(v.Axis, T.C.Pixel[2 * id] + 1, T.C.Pixel[2 * id + 1] + 1);
   };
-  vtkSMPTools::For(0, lines + 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType l = b; l < e; ++l)
+  vtkSMPTools::For(0, lines + 1,
+    [&](vtkIdType b, vtkIdType e)
     {
-      first[l].store(0, std::memory_order_relaxed);
-    }
-  });
-  vtkSMPTools::For(0, T.C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+      for (vtkIdType l = b; l < e; ++l)
+      {
+        first[l].store(0, std::memory_order_relaxed);
+      }
+    });
+  vtkSMPTools::For(0, T.C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      first[lineOf(id)].fetch_add(1, std::memory_order_relaxed);
-    }
-  });
+      for (vtkIdType id = b; id < e; ++id)
+      {
+        first[lineOf(id)].fetch_add(1, std::memory_order_relaxed);
+      }
+    });
   for (vtkIdType l = 1; l < lines; ++l)
   {
-    first[l].store(first[l].load(std::memory_order_relaxed) + first[l - 1].load(std::memory_order_relaxed),
+    first[l].store(
+      first[l].load(std::memory_order_relaxed) + first[l - 1].load(std::memory_order_relaxed),
       std::memory_order_relaxed);
   }
   first[lines].store(T.C.N, std::memory_order_relaxed);
   this->Samples.reset(new Sample[T.C.N]);
   auto& samples = this->Samples;
-  vtkSMPTools::For(0, T.C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+  vtkSMPTools::For(0, T.C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const View& v = T.Views[T.C.ViewOf[id]];
-      samples[first[lineOf(id)].fetch_sub(1, std::memory_order_relaxed) - 1] = {
-        T.C.P[3 * id + v.Axis], id, T.C.Tangent[id] != 0
-      };
-    }
-  });
+      for (vtkIdType id = b; id < e; ++id)
+      {
+        const View& v = T.Views[T.C.ViewOf[id]];
+        samples[first[lineOf(id)].fetch_sub(1, std::memory_order_relaxed) - 1] = {
+          T.C.P[3 * id + v.Axis], id, T.C.Tangent[id] != 0
+        };
+      }
+    });
 }
 
 // Which part of each line the views have not seen: all-hits views see everything; a
@@ -271,13 +281,15 @@ void HitLattice::GatherHidden()
   // All hidden roots in line order: each range's roots go where its first line's go.
   this->Hidden.reset(new Sample[hiddenStart[lines]]);
   auto& hidden = this->Hidden;
-  pisurf::ParallelFor(0, static_cast<vtkIdType>(hiddenRanges.size()), 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType k = b; k < e; ++k)
+  pisurf::ParallelFor(0, static_cast<vtkIdType>(hiddenRanges.size()), 1,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const HiddenRange& range = hiddenRanges[k];
-      std::copy(range.Roots.begin(), range.Roots.end(), hidden.get() + hiddenStart[range.Begin]);
-    }
-  });
+      for (vtkIdType k = b; k < e; ++k)
+      {
+        const HiddenRange& range = hiddenRanges[k];
+        std::copy(range.Roots.begin(), range.Roots.end(), hidden.get() + hiddenStart[range.Begin]);
+      }
+    });
   hiddenRanges.clear();
   // (not initialized on allocation: the threads below write every sample)
   this->Out.Line.reset(new Sample[start[lines]]);

@@ -20,7 +20,8 @@ bool FindLattice(const Triangulation& T, Lattice& L)
   bool defined[3] = { false, false, false }, box[3] = { false, false, false };
   bool axis[3] = { false, false, false };
   const double tol = 1e-9 * T.Size;
-  auto define = [&](int a, int n, double h, double b0) {
+  auto define = [&](int a, int n, double h, double b0)
+  {
     if (!(h > 0) || n < 1)
     {
       return false;
@@ -61,8 +62,7 @@ bool FindLattice(const Triangulation& T, Lattice& L)
   }
   for (int a = 0; a < 3; ++a)
   {
-    if (!axis[a] || !defined[a] ||
-      std::fabs(L.B0[a] - range[a][0]) > tol ||
+    if (!axis[a] || !defined[a] || std::fabs(L.B0[a] - range[a][0]) > tol ||
       std::fabs(L.B0[a] + L.N[a] * L.H[a] - range[a][1]) > tol)
     {
       return false;

@@ -22,7 +22,9 @@ struct Lattice
 
   double X(int a, int m) const
   {
-    return m <= 0 ? this->B0[a] : m > this->N[a] ? this->B1[a] : this->B0[a] + (m - 0.5) * this->H[a];
+    return m <= 0      ? this->B0[a]
+      : m > this->N[a] ? this->B1[a]
+                       : this->B0[a] + (m - 0.5) * this->H[a];
   }
   // The line of axis a through interior nodes mu (axis a+1) and mv (axis a+2), 1-based.
   vtkIdType Line(int a, int mu, int mv) const

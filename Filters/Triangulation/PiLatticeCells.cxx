@@ -294,7 +294,10 @@ inline void LatticeCells::EmitCell(int i, int j, int m, const unsigned char* bot
     if (size == 4)
     {
       // (the common case: the shorter bend of the two diagonals)
-      const int d = pisurf::Bend(v[0].P, v[0].N, v[2].P, v[2].N) <= pisurf::Bend(v[1].P, v[1].N, v[3].P, v[3].N) ? 0 : 1;
+      const int d =
+        pisurf::Bend(v[0].P, v[0].N, v[2].P, v[2].N) <= pisurf::Bend(v[1].P, v[1].N, v[3].P, v[3].N)
+        ? 0
+        : 1;
       for (int t = 0; t < 2; ++t)
       {
         tris.push_back(v[d].Key);
@@ -312,8 +315,10 @@ void LatticeCells::SplitPolygon(const Ref* v, int size, std::vector<std::int64_t
 {
   double cost[12][12];
   int split[12][12];
-  auto bend = [&](int a, int b) {
-    return b == a + 1 || (a == 0 && b == size - 1) ? 0.0 : pisurf::Bend(v[a].P, v[a].N, v[b].P, v[b].N);
+  auto bend = [&](int a, int b)
+  {
+    return b == a + 1 || (a == 0 && b == size - 1) ? 0.0
+                                                   : pisurf::Bend(v[a].P, v[a].N, v[b].P, v[b].N);
   };
   for (int k = 0; k + 1 < size; ++k)
   {
@@ -366,7 +371,8 @@ inline LatticeCells::Ref LatticeCells::Vertex(
   const int mu = n[(a + 1) % 3], mv = n[(a + 2) % 3];
   if (L.HasLine(a, mu, mv))
   {
-    if (const Sample* s = this->Lines.FirstCrossing(L.Line(a, mu, mv), L.X(a, n[a]), L.X(a, n[a] + 1)))
+    if (const Sample* s =
+          this->Lines.FirstCrossing(L.Line(a, mu, mv), L.X(a, n[a]), L.X(a, n[a] + 1)))
     {
       const std::int64_t code = s->Code();
       if (code >= 0)
@@ -379,8 +385,7 @@ inline LatticeCells::Ref LatticeCells::Vertex(
   }
   // No line carries it (a plane of the box, or a root within 1e-10 of a node):
   // the root of F on the edge itself.
-  const std::int64_t key =
-    EdgeBit | ((((std::int64_t(m) * ny + jn) * nx + i) * 3) + a);
+  const std::int64_t key = EdgeBit | ((((std::int64_t(m) * ny + jn) * nx + i) * 3) + a);
   c.Key = key;
   c.View = -1;
   double p0[3] = { L.X(0, i), L.X(1, jn), L.X(2, m) };
@@ -390,15 +395,15 @@ inline LatticeCells::Ref LatticeCells::Vertex(
   if (T.Caster)
   {
     const double x0 = L.X(a, n[a]), x1 = L.X(a, n[a] + 1);
-    auto phi = [&](double x) {
+    auto phi = [&](double x)
+    {
       double q[3] = { p0[0], p0[1], p0[2] };
       q[a] = x;
       return T.Compressed(q);
     };
     const double v0 = phi(x0), v1 = phi(x1);
-    c.P[a] = (v0 < 0) != (v1 < 0)
-      ? pisurf::BracketedRoot(phi, x0, x1, v0, v1, 1e-10 * T.Size, 0.0)
-      : 0.5 * (x0 + x1);
+    c.P[a] = (v0 < 0) != (v1 < 0) ? pisurf::BracketedRoot(phi, x0, x1, v0, v1, 1e-10 * T.Size, 0.0)
+                                  : 0.5 * (x0 + x1);
   }
   else
   {

@@ -31,8 +31,7 @@ void MeshAssembly::Run(int edgeFlipRounds)
   this->NumberPoints();
   // Components that no ray of the views reaches are not what the views show:
   // components without an input hit are dropped.
-  this->NewId =
-    HiddenComponents(T.Rows, this->UsedHits, this->Total).Run(this->Count);
+  this->NewId = HiddenComponents(T.Rows, this->UsedHits, this->Total).Run(this->Count);
   this->Lap("components");
   this->Vertices();
   this->OrientTriangles();
@@ -54,24 +53,28 @@ void MeshAssembly::NumberPoints()
     rowStart[r + 1] = rowStart[r] + static_cast<vtkIdType>(T.Rows[r].size());
   }
   std::unique_ptr<std::atomic<unsigned char>[]> hitUsed(new std::atomic<unsigned char>[C.N]);
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+  vtkSMPTools::For(0, C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      hitUsed[id].store(0, std::memory_order_relaxed);
-    }
-  });
-  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()), [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType r = b; r < e; ++r)
-    {
-      for (std::int64_t key : T.Rows[r])
+      for (vtkIdType id = b; id < e; ++id)
       {
-        if (key >= 0 && key < EdgeBit)
+        hitUsed[id].store(0, std::memory_order_relaxed);
+      }
+    });
+  vtkSMPTools::For(0, static_cast<vtkIdType>(T.Rows.size()),
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType r = b; r < e; ++r)
+      {
+        for (std::int64_t key : T.Rows[r])
         {
-          hitUsed[key].store(1, std::memory_order_relaxed);
+          if (key >= 0 && key < EdgeBit)
+          {
+            hitUsed[key].store(1, std::memory_order_relaxed);
+          }
         }
       }
-    }
-  });
+    });
   // Large arrays below are allocated uninitialized when a pass writes all of them (a
   // zeroing by one thread first would cost as much as the pass).
   this->HitOut.reset(new vtkIdType[C.N]);
@@ -82,8 +85,8 @@ void MeshAssembly::NumberPoints()
     hitOut[id] = hitUsed[id].load(std::memory_order_relaxed) ? usedHits++ : -1;
   }
   hitUsed.reset();
-  const auto hiddenEnd = std::partition_point(T.Points.begin(), T.Points.end(),
-    [](const Computed& c) { return c.Key < 0; });
+  const auto hiddenEnd = std::partition_point(
+    T.Points.begin(), T.Points.end(), [](const Computed& c) { return c.Key < 0; });
   const vtkIdType hiddenCount = hiddenEnd - T.Points.begin();
   auto byKey = [](const Computed& x, const Computed& y) { return x.Key < y.Key; };
   std::sort(T.Points.begin() + hiddenCount, T.Points.end(), byKey);
@@ -97,10 +100,11 @@ void MeshAssembly::NumberPoints()
     edgeKeys.push_back(c->Key);
   }
   // Key −(index + 1) is at index; edge keys by binary search.
-  auto computedId = [&](std::int64_t key) -> vtkIdType {
-    return key < 0 ? -key - 1
-                   : hiddenCount + (std::lower_bound(edgeKeys.begin(), edgeKeys.end(), key) -
-                                     edgeKeys.begin());
+  auto computedId = [&](std::int64_t key) -> vtkIdType
+  {
+    return key < 0
+      ? -key - 1
+      : hiddenCount + (std::lower_bound(edgeKeys.begin(), edgeKeys.end(), key) - edgeKeys.begin());
   };
   const vtkIdType triangles = this->Triangles = rowStart.back() / 3;
   // The corners: each row's keys become point ids in place (no second array of all the
@@ -108,15 +112,17 @@ void MeshAssembly::NumberPoints()
   // through the rows; triangle t of the whole list is triangle t − rowStart[r] / 3 of
   // its row r.
   const vtkIdType rows = this->RowCount = static_cast<vtkIdType>(T.Rows.size());
-  vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType r = b; r < e; ++r)
+  vtkSMPTools::For(0, rows,
+    [&](vtkIdType b, vtkIdType e)
     {
-      for (std::int64_t& key : T.Rows[r])
+      for (vtkIdType r = b; r < e; ++r)
       {
-        key = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
+        for (std::int64_t& key : T.Rows[r])
+        {
+          key = key >= 0 && key < EdgeBit ? hitOut[key] : usedHits + computedId(key);
+        }
       }
-    }
-  });
+    });
   this->Total = usedHits + static_cast<vtkIdType>(T.Points.size());
   if (lap.IsEnabled())
   {
@@ -153,43 +159,47 @@ void MeshAssembly::Vertices()
   int* viewOut = this->View->GetPointer(0);
   int* factorOut = this->Factor->GetPointer(0);
   unsigned char* singularOut = this->Singular->GetPointer(0);
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+  vtkSMPTools::For(0, C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const vtkIdType k = hitOut[id] < 0 ? -1 : newId[hitOut[id]];
-      if (k < 0)
+      for (vtkIdType id = b; id < e; ++id)
       {
-        continue;
+        const vtkIdType k = hitOut[id] < 0 ? -1 : newId[hitOut[id]];
+        if (k < 0)
+        {
+          continue;
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          xyz[3 * k + a] = C.P[3 * id + a];
+          nrmOut[3 * k + a] = C.Normal[3 * id + a];
+        }
+        singularOut[k] = C.Singular[id];
+        viewOut[k] = C.ViewOf[id];
+        factorOut[k] = C.Factor[id];
       }
-      for (int a = 0; a < 3; ++a)
-      {
-        xyz[3 * k + a] = C.P[3 * id + a];
-        nrmOut[3 * k + a] = C.Normal[3 * id + a];
-      }
-      singularOut[k] = C.Singular[id];
-      viewOut[k] = C.ViewOf[id];
-      factorOut[k] = C.Factor[id];
-    }
-  });
-  vtkSMPTools::For(0, computedCount, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType q = b; q < e; ++q)
+    });
+  vtkSMPTools::For(0, computedCount,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const vtkIdType k = newId[usedHits + q];
-      if (k < 0)
+      for (vtkIdType q = b; q < e; ++q)
       {
-        continue;
+        const vtkIdType k = newId[usedHits + q];
+        if (k < 0)
+        {
+          continue;
+        }
+        const Computed& c = T.Points[q];
+        for (int a = 0; a < 3; ++a)
+        {
+          xyz[3 * k + a] = c.P[a];
+          nrmOut[3 * k + a] = c.N[a];
+        }
+        viewOut[k] = c.View;
+        singularOut[k] = c.Singular ? 1 : 0;
+        factorOut[k] = c.Nearest;
       }
-      const Computed& c = T.Points[q];
-      for (int a = 0; a < 3; ++a)
-      {
-        xyz[3 * k + a] = c.P[a];
-        nrmOut[3 * k + a] = c.N[a];
-      }
-      viewOut[k] = c.View;
-      singularOut[k] = c.Singular ? 1 : 0;
-      factorOut[k] = c.Nearest;
-    }
-  });
+    });
 
   lap("vertices");
 }
@@ -205,43 +215,45 @@ void MeshAssembly::OrientTriangles()
   // degenerate ones (two corners on one hit) are dropped.
   this->Keep.reset(new unsigned char[this->Triangles]);
   auto& keep = this->Keep;
-  vtkSMPTools::For(0, rows, [&](vtkIdType rb, vtkIdType re) {
-    for (vtkIdType r = rb; r < re; ++r)
+  vtkSMPTools::For(0, rows,
+    [&](vtkIdType rb, vtkIdType re)
     {
-      for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t)
+      for (vtkIdType r = rb; r < re; ++r)
       {
-        std::int64_t* corner = T.Rows[r].data() + (3 * t - rowStart[r]);
-        keep[t] = 0;
-        vtkIdType id[3];
-        for (int c = 0; c < 3; ++c)
+        for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t)
         {
-          id[c] = newId[corner[c]];
-        }
-        if (id[0] < 0 || id[0] == id[1] || id[1] == id[2] || id[0] == id[2])
-        {
-          continue;
-        }
-        double u[3], v[3], nt[3], average[3] = { 0, 0, 0 };
-        const double* p0 = xyz + 3 * id[0];
-        for (int k = 0; k < 3; ++k)
-        {
-          u[k] = xyz[3 * id[1] + k] - p0[k];
-          v[k] = xyz[3 * id[2] + k] - p0[k];
+          std::int64_t* corner = T.Rows[r].data() + (3 * t - rowStart[r]);
+          keep[t] = 0;
+          vtkIdType id[3];
           for (int c = 0; c < 3; ++c)
           {
-            average[k] += nrmOut[3 * id[c] + k];
+            id[c] = newId[corner[c]];
           }
+          if (id[0] < 0 || id[0] == id[1] || id[1] == id[2] || id[0] == id[2])
+          {
+            continue;
+          }
+          double u[3], v[3], nt[3], average[3] = { 0, 0, 0 };
+          const double* p0 = xyz + 3 * id[0];
+          for (int k = 0; k < 3; ++k)
+          {
+            u[k] = xyz[3 * id[1] + k] - p0[k];
+            v[k] = xyz[3 * id[2] + k] - p0[k];
+            for (int c = 0; c < 3; ++c)
+            {
+              average[k] += nrmOut[3 * id[c] + k];
+            }
+          }
+          vtkMath::Cross(u, v, nt);
+          if (vtkMath::Dot(nt, average) < 0)
+          {
+            std::swap(id[1], id[2]);
+          }
+          std::copy(id, id + 3, corner);
+          keep[t] = 1;
         }
-        vtkMath::Cross(u, v, nt);
-        if (vtkMath::Dot(nt, average) < 0)
-        {
-          std::swap(id[1], id[2]);
-        }
-        std::copy(id, id + 3, corner);
-        keep[t] = 1;
       }
-    }
-  });
+    });
 }
 
 void MeshAssembly::Compact(int edgeFlipRounds)
@@ -254,12 +266,15 @@ void MeshAssembly::Compact(int edgeFlipRounds)
   float* nrmOut = this->NrmOut;
   // The kept triangles, compacted in parallel: counted per row, then copied.
   std::vector<vtkIdType> blockStart(rows + 1, 0);
-  vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType r = b; r < e; ++r)
+  vtkSMPTools::For(0, rows,
+    [&](vtkIdType b, vtkIdType e)
     {
-      blockStart[r + 1] = std::count(keep.get() + rowStart[r] / 3, keep.get() + rowStart[r + 1] / 3, 1);
-    }
-  });
+      for (vtkIdType r = b; r < e; ++r)
+      {
+        blockStart[r + 1] =
+          std::count(keep.get() + rowStart[r] / 3, keep.get() + rowStart[r + 1] / 3, 1);
+      }
+    });
   for (vtkIdType r = 0; r < rows; ++r)
   {
     blockStart[r + 1] += blockStart[r];
@@ -268,32 +283,35 @@ void MeshAssembly::Compact(int edgeFlipRounds)
   // The cells in vtkCellArray's 32-bit storage when the ids fit (half the memory of
   // 64-bit ids for the flips below and every filter downstream), else 64-bit.
   pisurf::EdgeFlipResult flipped;
-  auto compact = [&](auto* offsets, auto* cells) {
+  auto compact = [&](auto* offsets, auto* cells)
+  {
     using Id = std::remove_pointer_t<decltype(cells->GetPointer(0))>;
     pisurf::AllocateLargeArray(cells, 3 * kept);
     pisurf::AllocateLargeArray(offsets, kept + 1);
     Id* cellIds = cells->GetPointer(0);
     Id* offsetIds = offsets->GetPointer(0);
-    vtkSMPTools::For(0, rows, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType r = b; r < e; ++r)
+    vtkSMPTools::For(0, rows,
+      [&](vtkIdType b, vtkIdType e)
       {
-        vtkIdType out = blockStart[r];
-        const std::int64_t* corner = T.Rows[r].data();
-        for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t, corner += 3)
+        for (vtkIdType r = b; r < e; ++r)
         {
-          if (keep[t])
+          vtkIdType out = blockStart[r];
+          const std::int64_t* corner = T.Rows[r].data();
+          for (vtkIdType t = rowStart[r] / 3; t < rowStart[r + 1] / 3; ++t, corner += 3)
           {
-            for (int c = 0; c < 3; ++c)
+            if (keep[t])
             {
-              cellIds[3 * out + c] = static_cast<Id>(corner[c]);
+              for (int c = 0; c < 3; ++c)
+              {
+                cellIds[3 * out + c] = static_cast<Id>(corner[c]);
+              }
+              offsetIds[out] = static_cast<Id>(3 * out);
+              ++out;
             }
-            offsetIds[out] = static_cast<Id>(3 * out);
-            ++out;
           }
+          std::vector<std::int64_t>().swap(T.Rows[r]);
         }
-        std::vector<std::int64_t>().swap(T.Rows[r]);
-      }
-    });
+      });
     offsetIds[kept] = static_cast<Id>(3 * kept);
     this->Polys->SetData(offsets, cells);
     lap("triangles");

@@ -16,7 +16,8 @@ namespace triangulator
 
 const std::array<std::vector<std::vector<int>>, 256>& PolygonTable()
 {
-  static const std::array<std::vector<std::vector<int>>, 256> table = [] {
+  static const std::array<std::vector<std::vector<int>>, 256> table = []
+  {
     std::array<std::vector<std::vector<int>>, 256> t;
     vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
     for (int index = 0; index < 256; ++index)

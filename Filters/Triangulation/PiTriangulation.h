@@ -84,7 +84,8 @@ struct View
   // The lateral distance between neighbouring rays at depth t.
   double Footprint(double t) const
   {
-    const double s = std::sqrt(std::min(vtkMath::Dot(this->U, this->U), vtkMath::Dot(this->V, this->V)));
+    const double s =
+      std::sqrt(std::min(vtkMath::Dot(this->U, this->U), vtkMath::Dot(this->V, this->V)));
     return this->Perspective ? s * t / vtkMath::Norm(this->D) : s;
   }
 };
@@ -205,10 +206,7 @@ struct Triangulation
   }
 
   // sign(F)·ln(1 + |F|) (a model is there).
-  double Compressed(const double p[3]) const
-  {
-    return this->Model->EvaluateCompressed(p);
-  }
+  double Compressed(const double p[3]) const { return this->Model->EvaluateCompressed(p); }
 };
 
 } // namespace triangulator

@@ -37,13 +37,15 @@ bool TriangulationInput::Read(vtkPolyData* input, Triangulation& T, pisurf::Pass
   vtkDataArray* viewIndex = this->ViewIndex = Array(pd, "ViewIndex", 1);
   vtkDataArray* depth = this->Depth = Array(pd, "Depth", 1);
   vtkDataArray* normals = this->Normals = Array(pd, "Normals", 3);
-  auto* viewData = vtkDataArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiRayViews"));
+  auto* viewData =
+    vtkDataArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiRayViews"));
   if (!pixel || !viewIndex || !depth || !normals || !viewData ||
     viewData->GetNumberOfComponents() < 16)
   {
-    vtkErrorWithObjectMacro(T.Algorithm, << "The input has no pixel structure: it needs the point arrays PixelIndex, "
-                     "ViewIndex, Depth and Normals and the field data PiRayViews of a Pi Ray "
-                     "Cast (vtkPiRayCaster) output");
+    vtkErrorWithObjectMacro(
+      T.Algorithm, << "The input has no pixel structure: it needs the point arrays PixelIndex, "
+                      "ViewIndex, Depth and Normals and the field data PiRayViews of a Pi Ray "
+                      "Cast (vtkPiRayCaster) output");
     return false;
   }
   if (!this->ReadViews(viewData, T) || !this->ReadCloud(input, T) || !this->CheckCloud(T))
@@ -87,7 +89,8 @@ bool TriangulationInput::ReadViews(vtkDataArray* viewData, Triangulation& T)
     if (!finite || view.W < 1 || view.H < 1 || !(vtkMath::Norm(view.D) > 0) ||
       !(vtkMath::Norm(view.U) > 0) || !(vtkMath::Norm(view.V) > 0) || view.Length < 0)
     {
-      vtkErrorWithObjectMacro(T.Algorithm, << "PiRayViews: view " << v << " is not a valid view definition");
+      vtkErrorWithObjectMacro(
+        T.Algorithm, << "PiRayViews: view " << v << " is not a valid view definition");
       return false;
     }
     // An axis view: rays along ±e_a, u along e_(a+1), v along e_(a+2), as the caster
@@ -98,9 +101,8 @@ bool TriangulationInput::ReadViews(vtkDataArray* viewData, Triangulation& T)
       {
         const int ua = (a + 1) % 3, va = (a + 2) % 3;
         const double d = vtkMath::Norm(view.D);
-        if (std::fabs(std::fabs(view.D[a]) - d) <= 1e-12 * d && view.U[ua] > 0 &&
-          view.V[va] > 0 && view.U[a] == 0 && view.U[va] == 0 && view.V[a] == 0 &&
-          view.V[ua] == 0)
+        if (std::fabs(std::fabs(view.D[a]) - d) <= 1e-12 * d && view.U[ua] > 0 && view.V[va] > 0 &&
+          view.U[a] == 0 && view.U[va] == 0 && view.V[a] == 0 && view.V[ua] == 0)
         {
           view.Axis = a;
           view.Sense = view.D[a] < 0 ? -1 : 1;
@@ -135,7 +137,8 @@ bool TriangulationInput::ReadCloud(vtkPolyData* input, Triangulation& t)
     std::function<void(vtkIdType, const double*)> To;
   };
   std::vector<Copy> copies;
-  auto column = [&](auto& c, vtkDataArray* a, int components, double absent) {
+  auto column = [&](auto& c, vtkDataArray* a, int components, double absent)
+  {
     using T = typename std::decay<decltype(c.Store)>::type::value_type;
     if (a && c.Borrow(a))
     {
@@ -144,17 +147,18 @@ bool TriangulationInput::ReadCloud(vtkPolyData* input, Triangulation& t)
     T* out = c.Allocate(static_cast<size_t>(components) * C.N, static_cast<T>(absent));
     if (a)
     {
-      copies.push_back({ a, components, [out, components](vtkIdType id, const double* v) {
-                          for (int k = 0; k < components; ++k)
-                          {
-                            // (integers out of range become −1: an invalid pixel or view)
-                            out[components * id + k] = std::is_integral<T>::value &&
-                                !(v[k] >= std::numeric_limits<T>::lowest() &&
-                                  v[k] <= std::numeric_limits<T>::max())
-                              ? static_cast<T>(-1)
-                              : static_cast<T>(v[k]);
-                          }
-                        } });
+      copies.push_back({ a, components,
+        [out, components](vtkIdType id, const double* v)
+        {
+          for (int k = 0; k < components; ++k)
+          {
+            // (integers out of range become −1: an invalid pixel or view)
+            out[components * id + k] = std::is_integral<T>::value &&
+                !(v[k] >= std::numeric_limits<T>::lowest() && v[k] <= std::numeric_limits<T>::max())
+              ? static_cast<T>(-1)
+              : static_cast<T>(v[k]);
+          }
+        } });
     }
   };
   column(C.P, xyzIn, 3, 0);
@@ -167,21 +171,23 @@ bool TriangulationInput::ReadCloud(vtkPolyData* input, Triangulation& t)
   column(C.Factor, factor, 1, -1);
   if (!copies.empty())
   {
-    vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-      double v[9];
-      for (vtkIdType id = b; id < e; ++id)
+    vtkSMPTools::For(0, C.N,
+      [&](vtkIdType b, vtkIdType e)
       {
-        for (const Copy& c : copies)
+        double v[9];
+        for (vtkIdType id = b; id < e; ++id)
         {
-          c.From->GetTuple(id, v);
-          if (c.From == singular || c.From == tangent)
+          for (const Copy& c : copies)
           {
-            v[0] = v[0] != 0 ? 1 : 0;
+            c.From->GetTuple(id, v);
+            if (c.From == singular || c.From == tangent)
+            {
+              v[0] = v[0] != 0 ? 1 : 0;
+            }
+            c.To(id, v);
           }
-          c.To(id, v);
         }
-      }
-    });
+      });
   }
   return true;
 }
@@ -191,41 +197,46 @@ bool TriangulationInput::CheckCloud(Triangulation& T)
   const Cloud& C = T.C;
   // Checked in parallel; the first bad point (lowest id) is reported.
   std::atomic<vtkIdType> badPixel{ C.N }, badValue{ C.N };
-  auto lower = [](std::atomic<vtkIdType>& bad, vtkIdType id) {
+  auto lower = [](std::atomic<vtkIdType>& bad, vtkIdType id)
+  {
     vtkIdType seen = bad.load();
     while (id < seen && !bad.compare_exchange_weak(seen, id))
     {
     }
   };
   const int viewCount = static_cast<int>(T.Views.size());
-  vtkSMPTools::For(0, C.N, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType id = b; id < e; ++id)
+  vtkSMPTools::For(0, C.N,
+    [&](vtkIdType b, vtkIdType e)
     {
-      const int v = C.ViewOf[id], i = C.Pixel[2 * id], j = C.Pixel[2 * id + 1];
-      if (v < 0 || v >= viewCount || i < 0 || j < 0 || i >= T.Views[v].W || j >= T.Views[v].H)
+      for (vtkIdType id = b; id < e; ++id)
       {
-        lower(badPixel, id);
-        continue;
+        const int v = C.ViewOf[id], i = C.Pixel[2 * id], j = C.Pixel[2 * id + 1];
+        if (v < 0 || v >= viewCount || i < 0 || j < 0 || i >= T.Views[v].W || j >= T.Views[v].H)
+        {
+          lower(badPixel, id);
+          continue;
+        }
+        const double* p = C.P.data() + 3 * id;
+        const float* n = C.Normal.data() + 3 * id;
+        if (!std::isfinite(p[0] + p[1] + p[2]) || !std::isfinite(n[0] + n[1] + n[2]))
+        {
+          lower(badValue, id);
+        }
       }
-      const double* p = C.P.data() + 3 * id;
-      const float* n = C.Normal.data() + 3 * id;
-      if (!std::isfinite(p[0] + p[1] + p[2]) || !std::isfinite(n[0] + n[1] + n[2]))
-      {
-        lower(badValue, id);
-      }
-    }
-  });
+    });
   if (badPixel < C.N && badPixel <= badValue)
   {
     const vtkIdType id = badPixel;
-    vtkErrorWithObjectMacro(T.Algorithm, << "Point " << id << ": pixel (" << this->Pixel->GetComponent(id, 0) << ", "
-                  << this->Pixel->GetComponent(id, 1) << ") of view " << this->ViewIndex->GetComponent(id, 0)
-                  << " is outside the views of PiRayViews");
+    vtkErrorWithObjectMacro(T.Algorithm,
+      << "Point " << id << ": pixel (" << this->Pixel->GetComponent(id, 0) << ", "
+      << this->Pixel->GetComponent(id, 1) << ") of view " << this->ViewIndex->GetComponent(id, 0)
+      << " is outside the views of PiRayViews");
     return false;
   }
   if (badValue < C.N)
   {
-    vtkErrorWithObjectMacro(T.Algorithm, << "Point " << badValue.load() << " has a non-finite position or normal");
+    vtkErrorWithObjectMacro(
+      T.Algorithm, << "Point " << badValue.load() << " has a non-finite position or normal");
     return false;
   }
   return true;
@@ -235,7 +246,8 @@ bool TriangulationInput::ReadModel(vtkPolyData* input, Triangulation& T)
 {
   // The model, when the input carries it (needed for what the views did not see): a
   // molecule's field (any size, either mode), else the product of PiSurfaceModel.
-  auto* json = this->Json = vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
+  auto* json = this->Json =
+    vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
   pisurf::MoleculeInput& molecule = this->Molecule;
   std::string moleculeError;
   if (!molecule.Read(input, moleculeError))
@@ -256,7 +268,8 @@ bool TriangulationInput::ReadModel(vtkPolyData* input, Triangulation& T)
   {
     if (!this->Surface->SetModelJSON(json->GetValue(0)))
     {
-      vtkErrorWithObjectMacro(T.Algorithm, << "Invalid PiSurfaceModel: " << this->Surface->GetErrorMessage());
+      vtkErrorWithObjectMacro(
+        T.Algorithm, << "Invalid PiSurfaceModel: " << this->Surface->GetErrorMessage());
       return false;
     }
     std::shared_ptr<const pisurf::ProductKernel> kernel = this->Surface->GetKernel();

@@ -35,7 +35,8 @@ bool Select(const gemmi::Structure& structure, const std::string& name,
   out.NumberOfModels = static_cast<int>(structure.models.size());
   if (structure.models.empty())
   {
-    error = "No atoms in " + name + " (no ATOM/HETATM records or mmCIF _atom_site table were found)";
+    error =
+      "No atoms in " + name + " (no ATOM/HETATM records or mmCIF _atom_site table were found)";
     return false;
   }
   if (options.Model < 1 || options.Model > out.NumberOfModels)
@@ -272,7 +273,8 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
     }
     if (format == MoleculeFormat::Detect)
     {
-      const gemmi::CoorFormat detected = gemmi::coor_format_from_content(text.data(), text.data() + size);
+      const gemmi::CoorFormat detected =
+        gemmi::coor_format_from_content(text.data(), text.data() + size);
       format = detected == gemmi::CoorFormat::Pdb ? MoleculeFormat::Pdb : format;
     }
     if (format == MoleculeFormat::Pdb && !CheckPdbCoordinates(text, name, error))
@@ -293,7 +295,8 @@ bool Parse(std::vector<char>& text, const std::string& name, MoleculeFormat form
         structure = gemmi::read_pdb_from_memory(text.data(), parsed, name);
         break;
       case MoleculeFormat::Mmcif:
-        structure = gemmi::make_structure(gemmi::cif::read_memory(text.data(), parsed, name.c_str()));
+        structure =
+          gemmi::make_structure(gemmi::cif::read_memory(text.data(), parsed, name.c_str()));
         break;
       case MoleculeFormat::Detect:
         structure = gemmi::read_structure_from_char_array(text.data(), parsed, name);

@@ -4,8 +4,8 @@
 // Prints a Markdown table (each time the best of five executions): rays per second (from
 // wall-clock time, and for the Sequential backend also from the process CPU time, which
 // other processes on a shared machine disturb less), the all-hits time over the first-hit
-// time, both casts' hit counts, and the hits the marcher misses. PIRAY_BENCH_QUICK=1 skips the marcher and the
-// spheres (for profiling).
+// time, both casts' hit counts, and the hits the marcher misses. PIRAY_BENCH_QUICK=1 skips the
+// marcher and the spheres (for profiling).
 #include "PiProductKernel.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPiRayCaster.h"
@@ -19,9 +19,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -42,42 +42,45 @@ std::vector<double> March(const pisurf::ProductKernel& kernel, const double b[6]
 {
   std::vector<double> depth(size_t(n) * n, -1.0);
   const double length = b[3] - b[2];
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType j = begin; j < end; ++j)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      for (int i = 0; i < n; ++i)
+      for (vtkIdType j = begin; j < end; ++j)
       {
-        // Image axes (z, x) for the −Y view, rays from y1 along −y.
-        const double z = b[4] + (i + 0.5) * (b[5] - b[4]) / n;
-        const double x = b[0] + (j + 0.5) * (b[1] - b[0]) / n;
-        auto at = [&](double t) {
-          const double p[3] = { x, b[3] - t, z };
-          return kernel.EvaluateCompressed(p);
-        };
-        double ta = 0.0, va = at(0.0);
-        for (int s = 1; s <= steps; ++s)
+        for (int i = 0; i < n; ++i)
         {
-          const double tb = length * s / steps, vb = at(tb);
-          if ((va < 0) != (vb < 0))
+          // Image axes (z, x) for the −Y view, rays from y1 along −y.
+          const double z = b[4] + (i + 0.5) * (b[5] - b[4]) / n;
+          const double x = b[0] + (j + 0.5) * (b[1] - b[0]) / n;
+          auto at = [&](double t)
           {
-            double lo = ta, hi = tb;
-            for (int it = 0; it < 40; ++it)
+            const double p[3] = { x, b[3] - t, z };
+            return kernel.EvaluateCompressed(p);
+          };
+          double ta = 0.0, va = at(0.0);
+          for (int s = 1; s <= steps; ++s)
+          {
+            const double tb = length * s / steps, vb = at(tb);
+            if ((va < 0) != (vb < 0))
             {
-              const double mid = 0.5 * (lo + hi);
-              if ((at(mid) < 0) == (va < 0))
-                lo = mid;
-              else
-                hi = mid;
+              double lo = ta, hi = tb;
+              for (int it = 0; it < 40; ++it)
+              {
+                const double mid = 0.5 * (lo + hi);
+                if ((at(mid) < 0) == (va < 0))
+                  lo = mid;
+                else
+                  hi = mid;
+              }
+              depth[size_t(j) * n + i] = 0.5 * (lo + hi);
+              break;
             }
-            depth[size_t(j) * n + i] = 0.5 * (lo + hi);
-            break;
+            ta = tb;
+            va = vb;
           }
-          ta = tb;
-          va = vb;
         }
       }
-    }
-  });
+    });
   return depth;
 }
 
@@ -89,7 +92,8 @@ void Run(const std::string& name, vtkPiSurface* surface, int n)
   // measures, the first-hit and the all-hits casts taking turns: one run on a shared
   // machine is at the mercy of its neighbours, in phases that would otherwise favour
   // one side of the ratio.
-  auto once = [](vtkPiRayCaster* c, double& wall, double& cpu) {
+  auto once = [](vtkPiRayCaster* c, double& wall, double& cpu)
+  {
     c->Modified();
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpuStart = std::clock();
@@ -176,8 +180,9 @@ int main(int argc, char* argv[])
   const int n = argc > 2 ? std::atoi(argv[2]) : 1024;
   std::printf("\n%d x %d first-hit rays, -Y view\n\n", n, n);
   const bool quick = std::getenv("PIRAY_BENCH_QUICK") != nullptr;
-  std::printf("| model | backend | vtkPiRayCaster | rays/s (wall) | rays/s (CPU) | "
-              "all hits / first hit (time) | hits, all / first |%s\n|---|---|---|---|---|---|---|%s\n",
+  std::printf(
+    "| model | backend | vtkPiRayCaster | rays/s (wall) | rays/s (CPU) | "
+    "all hits / first hit (time) | hits, all / first |%s\n|---|---|---|---|---|---|---|%s\n",
     quick ? "" : " marcher steps (same time) | marcher | hits the marcher misses |",
     quick ? "" : "---|---|---|");
   for (const char* backend : { "Sequential", "STDThread" })

@@ -19,8 +19,10 @@
 #include <string>
 #include <vector>
 
-int main(int argc, char *argv[]) {
-  if (argc < 2) {
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
     std::fprintf(stderr, "usage: PiRayDump MODELS_DIR [N]\n");
     return 2;
   }
@@ -28,44 +30,50 @@ int main(int argc, char *argv[]) {
   const int n = argc > 2 ? std::atoi(argv[2]) : 96;
   vtkSMPTools::SetBackend("Sequential");
   std::vector<std::string> names;
-  if (DIR *d = opendir(dir.c_str())) {
-    while (dirent *e = readdir(d)) {
+  if (DIR* d = opendir(dir.c_str()))
+  {
+    while (dirent* e = readdir(d))
+    {
       const std::string f = e->d_name;
-      if (f.size() > 7 && f.substr(f.size() - 7) == ".pisurf") {
+      if (f.size() > 7 && f.substr(f.size() - 7) == ".pisurf")
+      {
         names.push_back(f);
       }
     }
     closedir(d);
   }
   std::sort(names.begin(), names.end());
-  for (const std::string &name : names) {
+  for (const std::string& name : names)
+  {
     vtkNew<vtkPiSurface> surface;
-    if (!surface->LoadModel((dir + "/" + name).c_str())) {
+    if (!surface->LoadModel((dir + "/" + name).c_str()))
+    {
       continue;
     }
     double b[6];
-    const double none[6] = {0, 0, 0, 0, 0, 0};
-    if (!surface->ResolveBounds(none, b)) {
+    const double none[6] = { 0, 0, 0, 0, 0, 0 };
+    if (!surface->ResolveBounds(none, b))
+    {
       continue;
     }
-    const double c[3] = {0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]),
-                         0.5 * (b[4] + b[5])};
-    const double s = std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
-    struct Setup {
-      const char *Label;
+    const double c[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+    const double s = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+    struct Setup
+    {
+      const char* Label;
       int Mode;
       bool All;
       bool Parallel;
     };
-    const Setup setups[] = {
-        {"six", vtkPiRayCaster::SIX_AXIS_VIEWS, false, false},
-        {"three-all", vtkPiRayCaster::THREE_AXIS_DIRECTIONS, true, false},
-        {"six-all", vtkPiRayCaster::SIX_AXIS_VIEWS, true, false},
-        {"camera", vtkPiRayCaster::CAMERA, false, false},
-        {"camera-all", vtkPiRayCaster::CAMERA, true, false},
-        {"parallel-all", vtkPiRayCaster::CAMERA, true, true}};
+    const Setup setups[] = { { "six", vtkPiRayCaster::SIX_AXIS_VIEWS, false, false },
+      { "three-all", vtkPiRayCaster::THREE_AXIS_DIRECTIONS, true, false },
+      { "six-all", vtkPiRayCaster::SIX_AXIS_VIEWS, true, false },
+      { "camera", vtkPiRayCaster::CAMERA, false, false },
+      { "camera-all", vtkPiRayCaster::CAMERA, true, false },
+      { "parallel-all", vtkPiRayCaster::CAMERA, true, true } };
     const std::clock_t start = std::clock();
-    for (const Setup &setup : setups) {
+    for (const Setup& setup : setups)
+    {
       vtkNew<vtkPiRayCaster> caster;
       caster->SetPiSurface(surface);
       caster->SetViewMode(setup.Mode);
@@ -78,26 +86,26 @@ int main(int argc, char *argv[]) {
       caster->SetParallelProjection(setup.Parallel);
       caster->SetParallelScale(0.6 * s);
       caster->Update();
-      vtkPolyData *out = caster->GetOutput();
-      vtkPointData *pd = out->GetPointData();
-      vtkDataArray *pixel = pd->GetArray("PixelIndex");
-      vtkDataArray *view = pd->GetArray("ViewIndex");
-      vtkDataArray *index = pd->GetArray("HitIndex");
-      vtkDataArray *depth = pd->GetArray("Depth");
-      vtkDataArray *tangent = pd->GetArray("Tangent");
-      vtkDataArray *singular = pd->GetArray("Singular");
-      vtkDataArray *factor = pd->GetArray("Factor");
-      for (vtkIdType k = 0; k < out->GetNumberOfPoints(); ++k) {
-        std::printf(
-            "%s %s %d %d %d %d %.17g %d %d %d\n", name.c_str(), setup.Label,
-            int(view->GetComponent(k, 0)), int(pixel->GetComponent(k, 0)),
-            int(pixel->GetComponent(k, 1)), int(index->GetComponent(k, 0)),
-            depth->GetComponent(k, 0), int(tangent->GetComponent(k, 0)),
-            int(singular->GetComponent(k, 0)), int(factor->GetComponent(k, 0)));
+      vtkPolyData* out = caster->GetOutput();
+      vtkPointData* pd = out->GetPointData();
+      vtkDataArray* pixel = pd->GetArray("PixelIndex");
+      vtkDataArray* view = pd->GetArray("ViewIndex");
+      vtkDataArray* index = pd->GetArray("HitIndex");
+      vtkDataArray* depth = pd->GetArray("Depth");
+      vtkDataArray* tangent = pd->GetArray("Tangent");
+      vtkDataArray* singular = pd->GetArray("Singular");
+      vtkDataArray* factor = pd->GetArray("Factor");
+      for (vtkIdType k = 0; k < out->GetNumberOfPoints(); ++k)
+      {
+        std::printf("%s %s %d %d %d %d %.17g %d %d %d\n", name.c_str(), setup.Label,
+          int(view->GetComponent(k, 0)), int(pixel->GetComponent(k, 0)),
+          int(pixel->GetComponent(k, 1)), int(index->GetComponent(k, 0)), depth->GetComponent(k, 0),
+          int(tangent->GetComponent(k, 0)), int(singular->GetComponent(k, 0)),
+          int(factor->GetComponent(k, 0)));
       }
     }
-    std::fprintf(stderr, "%-34s %.3f s CPU\n", name.c_str(),
-                 double(std::clock() - start) / CLOCKS_PER_SEC);
+    std::fprintf(
+      stderr, "%-34s %.3f s CPU\n", name.c_str(), double(std::clock() - start) / CLOCKS_PER_SEC);
   }
   return 0;
 }

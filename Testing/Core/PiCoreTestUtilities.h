@@ -91,8 +91,8 @@ inline ::testing::AssertionResult RelativelyNear(double a, double b, double tol)
   {
     return ::testing::AssertionSuccess();
   }
-  return ::testing::AssertionFailure() << a << " and " << b << " differ by "
-                                       << std::fabs(a - b) << " relative tolerance " << tol;
+  return ::testing::AssertionFailure()
+    << a << " and " << b << " differ by " << std::fabs(a - b) << " relative tolerance " << tol;
 }
 
 /// Central finite-difference gradient of f at p with step h (error O(h^2)).
@@ -127,23 +127,24 @@ inline ::testing::AssertionResult HasFragments(
 }
 
 /// Coefficient-by-coefficient equality of two polynomials (exact).
-inline ::testing::AssertionResult SameTerms(const pisurf::Polynomial3& a, const pisurf::Polynomial3& b)
+inline ::testing::AssertionResult SameTerms(
+  const pisurf::Polynomial3& a, const pisurf::Polynomial3& b)
 {
   const auto& ta = a.GetTerms();
   const auto& tb = b.GetTerms();
   if (ta.size() != tb.size())
   {
-    return ::testing::AssertionFailure() << "term counts differ: " << ta.size() << " vs "
-                                         << tb.size() << " (" << a.ToString() << " vs "
-                                         << b.ToString() << ")";
+    return ::testing::AssertionFailure()
+      << "term counts differ: " << ta.size() << " vs " << tb.size() << " (" << a.ToString()
+      << " vs " << b.ToString() << ")";
   }
   for (size_t n = 0; n < ta.size(); ++n)
   {
     if (ta[n].I != tb[n].I || ta[n].J != tb[n].J || ta[n].K != tb[n].K ||
       ta[n].Coefficient != tb[n].Coefficient)
     {
-      return ::testing::AssertionFailure() << "term " << n << " differs: " << a.ToString()
-                                           << " vs " << b.ToString();
+      return ::testing::AssertionFailure()
+        << "term " << n << " differs: " << a.ToString() << " vs " << b.ToString();
     }
   }
   return ::testing::AssertionSuccess();
@@ -162,17 +163,17 @@ inline ::testing::AssertionResult SameTermsNear(
   {
     scale = std::max(scale, std::fabs(t.Coefficient));
   }
-  auto check = [&](const pisurf::Polynomial3& p, const pisurf::Polynomial3& q)
-    -> ::testing::AssertionResult {
+  auto check = [&](const pisurf::Polynomial3& p,
+                 const pisurf::Polynomial3& q) -> ::testing::AssertionResult
+  {
     for (const auto& t : p.GetTerms())
     {
       const double c = q.GetCoefficient(t.I, t.J, t.K);
       if (std::fabs(c - t.Coefficient) > tol * scale)
       {
         return ::testing::AssertionFailure()
-          << "coefficient of x^" << t.I << " y^" << t.J << " z^" << t.K << ": "
-          << t.Coefficient << " vs " << c << " (" << a.ToString() << " vs " << b.ToString()
-          << ")";
+          << "coefficient of x^" << t.I << " y^" << t.J << " z^" << t.K << ": " << t.Coefficient
+          << " vs " << c << " (" << a.ToString() << " vs " << b.ToString() << ")";
       }
     }
     return ::testing::AssertionSuccess();

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of pisurf::ParseExpression and IsValidParameterName (PiExpression.h).
-#include "PiExpression.h"
 #include "PiCoreTestUtilities.h"
+#include "PiExpression.h"
 
 #include <gtest/gtest.h>
 
@@ -54,7 +54,8 @@ std::string ExpectError(const std::string& text, const std::vector<std::string>&
 TEST(Expression, ExpandsProductsAndPowers)
 {
   // (x − 1)² = x² − 2x + 1
-  EXPECT_TRUE(SameTerms(Parse("(x-1)^2"), Terms({ { 1, 2, 0, 0 }, { -2, 1, 0, 0 }, { 1, 0, 0, 0 } })));
+  EXPECT_TRUE(
+    SameTerms(Parse("(x-1)^2"), Terms({ { 1, 2, 0, 0 }, { -2, 1, 0, 0 }, { 1, 0, 0, 0 } })));
   // (x + y + z)² has the six expected terms.
   EXPECT_TRUE(SameTerms(Parse("(x + y + z)^2"),
     Terms({ { 1, 2, 0, 0 }, { 1, 0, 2, 0 }, { 1, 0, 0, 2 }, { 2, 1, 1, 0 }, { 2, 1, 0, 1 },
@@ -78,7 +79,8 @@ TEST(Expression, UnaryMinusBindsLooserThanPower)
   EXPECT_TRUE(SameTerms(Parse("--x"), Terms({ { 1, 1, 0, 0 } })));
   EXPECT_TRUE(SameTerms(Parse("+x"), Terms({ { 1, 1, 0, 0 } })));
   EXPECT_TRUE(SameTerms(Parse("-3*x - -2"), Terms({ { -3, 1, 0, 0 }, { 2, 0, 0, 0 } })));
-  EXPECT_TRUE(SameTerms(Parse("x - y - z"), Terms({ { 1, 1, 0, 0 }, { -1, 0, 1, 0 }, { -1, 0, 0, 1 } })));
+  EXPECT_TRUE(
+    SameTerms(Parse("x - y - z"), Terms({ { 1, 1, 0, 0 }, { -1, 0, 1, 0 }, { -1, 0, 0, 1 } })));
   EXPECT_TRUE(SameTerms(Parse("8/2/2"), Polynomial3::Constant(2))) << "'/' is left-associative";
 }
 
@@ -122,10 +124,12 @@ TEST(Expression, Parameters)
 {
   const ParameterMap params = { { "a", 2.0 }, { "b", -3.0 }, { "_r2", 0.5 }, { "X", 10.0 } };
   EXPECT_TRUE(SameTerms(Parse("a*x + b", params), Terms({ { 2, 1, 0, 0 }, { -3, 0, 0, 0 } })));
-  EXPECT_TRUE(SameTerms(Parse("x^2 - _r2^2", params), Terms({ { 1, 2, 0, 0 }, { -0.25, 0, 0, 0 } })));
+  EXPECT_TRUE(
+    SameTerms(Parse("x^2 - _r2^2", params), Terms({ { 1, 2, 0, 0 }, { -0.25, 0, 0, 0 } })));
   EXPECT_TRUE(SameTerms(Parse("y^a", params), Terms({ { 1, 0, 2, 0 } }))) << "parameter exponent";
   EXPECT_TRUE(SameTerms(Parse("z/a", params), Terms({ { 0.5, 0, 0, 1 } })));
-  EXPECT_TRUE(SameTerms(Parse("X*x", params), Terms({ { 10, 1, 0, 0 } }))) << "names are case-sensitive";
+  EXPECT_TRUE(SameTerms(Parse("X*x", params), Terms({ { 10, 1, 0, 0 } })))
+    << "names are case-sensitive";
 }
 
 TEST(Expression, EmptyInput)

@@ -30,9 +30,9 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <stdexcept>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -88,8 +88,8 @@ FieldCase GalleryCase(const std::string& name, const double region[6])
   {
     throw std::runtime_error(name + ": " + error);
   }
-  FieldCase c{ "product/" + name, ProductOf(model.Primitives, model.Parameters, model.Blending),
-    {}, 0.0 };
+  FieldCase c{ "product/" + name, ProductOf(model.Primitives, model.Parameters, model.Blending), {},
+    0.0 };
   std::copy(region, region + 6, c.Region);
   c.Scale = std::max({ region[1] - region[0], region[3] - region[2], region[5] - region[4] });
   return c;
@@ -210,14 +210,16 @@ TEST_P(FieldConformance, ValuesAreFiniteAndTheSameFromEveryThread)
   std::vector<std::thread> threads;
   for (size_t t = 0; t < threaded.size(); ++t)
   {
-    threads.emplace_back([&, t] {
-      // Each thread walks the points from its own start, so they meet at different points.
-      for (size_t n = 0; n < points.size(); ++n)
+    threads.emplace_back(
+      [&, t]
       {
-        const size_t i = (n + t * points.size() / 4) % points.size();
-        threaded[t][i] = c.Field->Evaluate(points[i].data());
-      }
-    });
+        // Each thread walks the points from its own start, so they meet at different points.
+        for (size_t n = 0; n < points.size(); ++n)
+        {
+          const size_t i = (n + t * points.size() / 4) % points.size();
+          threaded[t][i] = c.Field->Evaluate(points[i].data());
+        }
+      });
   }
   for (std::thread& thread : threads)
   {
@@ -291,8 +293,8 @@ TEST_P(FieldConformance, ClassifyBoxIsNeverWrong)
   {
     const Point centre = InRegion(random, c.Region);
     const double half = c.Scale * random.Uniform(0.002, 0.1);
-    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half,
-      centre[1] + half, centre[2] - half, centre[2] + half };
+    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half,
+      centre[2] - half, centre[2] + half };
     const int sign = c.Field->ClassifyBox(box);
     if (sign == 0)
     {
@@ -354,7 +356,8 @@ TEST_P(FieldConformance, NormalAgreesWithFiniteDifferences)
       continue; // near a critical point the difference quotient says nothing
     }
     const double cosine = (g[0] * normal[0] + g[1] * normal[1] + g[2] * normal[2]) / gn;
-    ASSERT_GT(cosine, 1.0 - c.NormalTolerance) << c.Name << " at " << p[0] << " " << p[1] << " " << p[2];
+    ASSERT_GT(cosine, 1.0 - c.NormalTolerance)
+      << c.Name << " at " << p[0] << " " << p[1] << " " << p[2];
     ++directions;
     // |∇F| where the difference quotient of F resolves it: rounding of F over 2h
     // below 1e-7 of the gradient.
@@ -386,7 +389,8 @@ TEST_P(FieldConformance, RootsBracketASignChange)
     Point b = a;
     b[n % 3] += c.Scale * 0.05;
     const double va = c.Field->Evaluate(a.data()), vb = c.Field->Evaluate(b.data());
-    const auto at = [&](double s) {
+    const auto at = [&](double s)
+    {
       const double q[3] = { a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]),
         a[2] + s * (b[2] - a[2]) };
       return c.Field->Evaluate(q);
@@ -437,8 +441,8 @@ TEST_P(FieldConformance, OctantClassificationIsNeverWrong)
   {
     const Point centre = InRegion(random, c.Region);
     const double half = c.Scale * random.Uniform(0.005, 0.1);
-    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half,
-      centre[1] + half, centre[2] - half, centre[2] + half };
+    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half,
+      centre[2] - half, centre[2] + half };
     for (const bool all : { false, true })
     {
       int octants[8];
@@ -522,7 +526,8 @@ TEST_P(FieldConformance, CastRayFindsEverySignChange)
       }
     }
     const int samples = 1024;
-    auto negative = [&](int i) {
+    auto negative = [&](int i)
+    {
       const double t = double(i) / samples;
       const double q[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
       return c.Field->Evaluate(q) < 0;
@@ -541,8 +546,8 @@ TEST_P(FieldConformance, CastRayFindsEverySignChange)
         {
           found = found || (root.T >= lo && root.T <= hi);
         }
-        ASSERT_TRUE(found) << c.Name << ": ray " << n << " changes sign in [" << lo << ", "
-                           << hi << "] but CastRay gives no root there";
+        ASSERT_TRUE(found) << c.Name << ": ray " << n << " changes sign in [" << lo << ", " << hi
+                           << "] but CastRay gives no root there";
       }
       before = now;
     }
@@ -584,7 +589,8 @@ TEST_P(FieldConformance, ProbeVertexTellsRegularFromSingular)
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryField, FieldConformance, ::testing::ValuesIn(FieldNames()),
-  [](const ::testing::TestParamInfo<std::string>& info) {
+  [](const ::testing::TestParamInfo<std::string>& info)
+  {
     std::string name = info.param;
     for (char& ch : name)
     {

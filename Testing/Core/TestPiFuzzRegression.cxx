@@ -43,7 +43,8 @@ size_t Replay(void (*target)(const uint8_t*, size_t), const std::vector<std::str
     for (const std::string& file : Files(dir))
     {
       std::ifstream in(file, std::ios::binary);
-      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string bytes(
+        (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
       std::cout << "replaying " << file << std::endl;
       target(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
       ++count;
@@ -57,9 +58,8 @@ const std::string Data = PISURF_DATA_DIR;
 
 TEST(FuzzRegression, Model)
 {
-  EXPECT_GT(Replay(pisurf::fuzz::Model,
-              { Data + "/Models", Data + "/Fuzz/regressions/model" }),
-    10u);
+  EXPECT_GT(
+    Replay(pisurf::fuzz::Model, { Data + "/Models", Data + "/Fuzz/regressions/model" }), 10u);
 }
 
 TEST(FuzzRegression, Expression)

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of the .pisurf model: ParseModel, WriteModel, ValidBounds (PiModel.h), and
 // of every model in Testing/Data/Models.
+#include "PiCoreTestUtilities.h"
 #include "PiModel.h"
 #include "PiProductKernel.h"
-#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -29,13 +29,13 @@ namespace
 /// Field-by-field equality of two specs (every field, exactly).
 ::testing::AssertionResult SameSpec(const PrimitiveSpec& a, const PrimitiveSpec& b)
 {
-  auto fail = [&](const char* field) {
-    return ::testing::AssertionFailure() << TypeKey(a.Type) << " '" << a.Name << "': field "
-                                         << field << " differs";
+  auto fail = [&](const char* field)
+  {
+    return ::testing::AssertionFailure()
+      << TypeKey(a.Type) << " '" << a.Name << "': field " << field << " differs";
   };
-  auto same3 = [](const double* x, const double* y) {
-    return x[0] == y[0] && x[1] == y[1] && x[2] == y[2];
-  };
+  auto same3 = [](const double* x, const double* y)
+  { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; };
   if (a.Type != b.Type)
     return fail("Type");
   if (a.Name != b.Name)
@@ -363,10 +363,13 @@ TEST(Model, NotJsonReportsLineAndColumn)
 TEST(Model, TopLevelErrorsNameTheKey)
 {
   const std::string sphere = R"({"type": "sphere", "radius": 1})";
-  ExpectModelError(R"({"pisurf": 1, "blending": 0, "color": "red", "primitives": [)" + sphere + "]}",
+  ExpectModelError(
+    R"({"pisurf": 1, "blending": 0, "color": "red", "primitives": [)" + sphere + "]}",
     { "model", "unknown key 'color'" });
-  ExpectModelError(R"({"blending": 0, "primitives": [)" + sphere + "]}", { "missing key 'pisurf'" });
-  ExpectModelError(R"({"pisurf": 1, "primitives": [)" + sphere + "]}", { "missing key 'blending'" });
+  ExpectModelError(
+    R"({"blending": 0, "primitives": [)" + sphere + "]}", { "missing key 'pisurf'" });
+  ExpectModelError(
+    R"({"pisurf": 1, "primitives": [)" + sphere + "]}", { "missing key 'blending'" });
   ExpectModelError(R"({"pisurf": 1, "blending": 0})", { "missing key 'primitives'" });
   ExpectModelError(R"({"pisurf": 2, "blending": 0, "primitives": [)" + sphere + "]}",
     { "pisurf", "unsupported version" });
@@ -385,12 +388,16 @@ TEST(Model, TopLevelErrorsNameTheKey)
 TEST(Model, ParameterErrors)
 {
   const std::string sphere = R"({"type": "sphere", "radius": 1})";
-  ExpectModelError(Doc(sphere, R"("parameters": {"x": 1},)"), { "parameters.x", "invalid parameter name" });
-  ExpectModelError(Doc(sphere, R"("parameters": {"2a": 1},)"), { "parameters.2a", "invalid parameter name" });
-  ExpectModelError(Doc(sphere, R"("parameters": {"a": "one"},)"), { "parameters.a", "expected a number" });
+  ExpectModelError(
+    Doc(sphere, R"("parameters": {"x": 1},)"), { "parameters.x", "invalid parameter name" });
+  ExpectModelError(
+    Doc(sphere, R"("parameters": {"2a": 1},)"), { "parameters.2a", "invalid parameter name" });
+  ExpectModelError(
+    Doc(sphere, R"("parameters": {"a": "one"},)"), { "parameters.a", "expected a number" });
   ExpectModelError(Doc(sphere, R"("parameters": [1],)"), { "parameters", "expected an object" });
   // An expression using an undefined parameter.
-  ExpectModelError(Doc(R"({"type": "polynomial", "expression": "x - b"})", R"("parameters": {"a": 1},)"),
+  ExpectModelError(
+    Doc(R"({"type": "polynomial", "expression": "x - b"})", R"("parameters": {"a": 1},)"),
     { "primitives[0]", "unknown name 'b'" });
 }
 
@@ -400,11 +407,15 @@ TEST(Model, BoundsErrors)
   ExpectModelError(Doc(sphere, "", R"("bounds": [1, 1, -1, 1, -1, 1],)"), { "bounds", "x0 < x1" });
   ExpectModelError(Doc(sphere, "", R"("bounds": [-1, 1, 2, -2, -1, 1],)"), { "bounds", "y0 < y1" });
   ExpectModelError(Doc(sphere, "", R"("bounds": [-1, 1, -1, 1, -1],)"), { "bounds", "array of 6" });
-  ExpectModelError(Doc(sphere, "", R"("bounds": [-1, 1, -1, 1, -1, "1"],)"), { "bounds[5]", "expected a number" });
+  ExpectModelError(
+    Doc(sphere, "", R"("bounds": [-1, 1, -1, 1, -1, "1"],)"), { "bounds[5]", "expected a number" });
   // An unbounded primitive needs model bounds; bounded ones do not.
-  ExpectModelError(Doc(R"({"type": "plane", "normal": [0, 0, 1]})", "", ""), { "bounds", "required" });
-  ExpectModelError(Doc(sphere + R"(, {"type": "cylinder", "radius": 1})", "", ""), { "bounds", "required" });
-  const Model m = Parse(Doc(sphere + R"(, {"type": "torus", "major_radius": 1, "minor_radius": 0.5})", "", ""));
+  ExpectModelError(
+    Doc(R"({"type": "plane", "normal": [0, 0, 1]})", "", ""), { "bounds", "required" });
+  ExpectModelError(
+    Doc(sphere + R"(, {"type": "cylinder", "radius": 1})", "", ""), { "bounds", "required" });
+  const Model m =
+    Parse(Doc(sphere + R"(, {"type": "torus", "major_radius": 1, "minor_radius": 0.5})", "", ""));
   EXPECT_FALSE(m.HasBounds);
 }
 
@@ -414,26 +425,40 @@ TEST(Model, PrimitiveErrorsNameThePath)
     { "primitives[1]", "unknown key 'radiuss'" });
   ExpectModelError(Doc(R"({"type": "cone", "angle": 30, "radius": 1})"),
     { "primitives[0]", "unknown key 'radius' for a cone" });
-  ExpectModelError(Doc(R"({"type": "cube", "radius": 1})"), { "primitives[0].type", "unknown primitive type 'cube'" });
+  ExpectModelError(Doc(R"({"type": "cube", "radius": 1})"),
+    { "primitives[0].type", "unknown primitive type 'cube'" });
   ExpectModelError(Doc(R"({"radius": 1})"), { "primitives[0]", "missing key 'type'" });
   ExpectModelError(Doc(R"({"type": 3})"), { "primitives[0].type", "expected a string" });
   ExpectModelError(Doc(R"({"type": "sphere"})"), { "primitives[0]", "needs the key 'radius'" });
-  ExpectModelError(Doc(R"({"type": "torus", "major_radius": 1})"), { "primitives[0]", "needs the key 'minor_radius'" });
+  ExpectModelError(Doc(R"({"type": "torus", "major_radius": 1})"),
+    { "primitives[0]", "needs the key 'minor_radius'" });
   ExpectModelError(Doc("3"), { "primitives[0]", "expected an object" });
   // Wrong types.
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": "1"})"), { "primitives[0].radius", "expected a number, got string" });
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "center": [0, 0]})"), { "primitives[0].center", "array of 3" });
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "center": [0, null, 0]})"), { "primitives[0].center[1]", "expected a number" });
-  ExpectModelError(Doc(R"({"type": "ellipsoid", "radii": [1, 2]})"), { "primitives[0].radii", "array of 3" });
-  ExpectModelError(Doc(R"({"type": "paraboloid", "radii": [1, 2, 3]})"), { "primitives[0].radii", "array of 2" });
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "negate": 1})"), { "primitives[0].negate", "true or false" });
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "name": false})"), { "primitives[0].name", "expected a string" });
-  ExpectModelError(Doc(R"({"type": "polynomial", "expression": 5})"), { "primitives[0].expression", "expected a string" });
+  ExpectModelError(Doc(R"({"type": "sphere", "radius": "1"})"),
+    { "primitives[0].radius", "expected a number, got string" });
+  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "center": [0, 0]})"),
+    { "primitives[0].center", "array of 3" });
+  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "center": [0, null, 0]})"),
+    { "primitives[0].center[1]", "expected a number" });
+  ExpectModelError(
+    Doc(R"({"type": "ellipsoid", "radii": [1, 2]})"), { "primitives[0].radii", "array of 3" });
+  ExpectModelError(
+    Doc(R"({"type": "paraboloid", "radii": [1, 2, 3]})"), { "primitives[0].radii", "array of 2" });
+  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "negate": 1})"),
+    { "primitives[0].negate", "true or false" });
+  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "name": false})"),
+    { "primitives[0].name", "expected a string" });
+  ExpectModelError(Doc(R"({"type": "polynomial", "expression": 5})"),
+    { "primitives[0].expression", "expected a string" });
   // Invalid values, named by path and parameter.
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": -1})"), { "primitives[0]", "radius must be a positive" });
-  ExpectModelError(Doc(R"({"type": "sphere", "name": "ball", "radius": 0})"), { "primitives[0] ('ball')", "radius" });
-  ExpectModelError(Doc(R"({"type": "ellipsoid", "radii": [1, 0, 1]})"), { "primitives[0]", "radii[1]" });
-  ExpectModelError(Doc(R"({"type": "torus", "major_radius": 1, "minor_radius": -1})"), { "primitives[0]", "minor_radius" });
+  ExpectModelError(
+    Doc(R"({"type": "sphere", "radius": -1})"), { "primitives[0]", "radius must be a positive" });
+  ExpectModelError(Doc(R"({"type": "sphere", "name": "ball", "radius": 0})"),
+    { "primitives[0] ('ball')", "radius" });
+  ExpectModelError(
+    Doc(R"({"type": "ellipsoid", "radii": [1, 0, 1]})"), { "primitives[0]", "radii[1]" });
+  ExpectModelError(Doc(R"({"type": "torus", "major_radius": 1, "minor_radius": -1})"),
+    { "primitives[0]", "minor_radius" });
   ExpectModelError(Doc(R"({"type": "plane", "normal": [0, 0, 0]})"), { "primitives[0]", "normal" });
   ExpectModelError(Doc(R"({"type": "superellipsoid", "radii": [1, 1, 1], "exponent": 3})"),
     { "primitives[0].exponent", "even integer" });
@@ -443,22 +468,32 @@ TEST(Model, PrimitiveErrorsNameThePath)
     { "primitives[0].exponent", "even integer" });
   ExpectModelError(Doc(R"({"type": "cone", "angle": 90})"), { "primitives[0]", "angle" });
   ExpectModelError(Doc(R"({"type": "cone", "angle": 0})"), { "primitives[0]", "angle" });
-  ExpectModelError(Doc(R"({"type": "polynomial", "expression": ""})"), { "primitives[0].expression", "empty" });
-  ExpectModelError(Doc(R"({"type": "polynomial", "expression": "  \t "})"), { "primitives[0].expression", "empty" });
+  ExpectModelError(
+    Doc(R"({"type": "polynomial", "expression": ""})"), { "primitives[0].expression", "empty" });
+  ExpectModelError(Doc(R"({"type": "polynomial", "expression": "  \t "})"),
+    { "primitives[0].expression", "empty" });
   ExpectModelError(Doc(R"({"type": "polynomial", "expression": "x^2 +* y"})"),
     { "primitives[0]", "expression", "position 6" });
-  ExpectModelError(Doc(R"({"type": "sphere", "radius": 1, "scale": 0})"), { "primitives[0]", "scale" });
+  ExpectModelError(
+    Doc(R"({"type": "sphere", "radius": 1, "scale": 0})"), { "primitives[0]", "scale" });
   // Orientation.
-  ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "axis": [0, 0, 1], "rotation": {"axis": [0, 0, 1], "angle": 10}})"),
+  ExpectModelError(
+    Doc(
+      R"({"type": "cylinder", "radius": 1, "axis": [0, 0, 1], "rotation": {"axis": [0, 0, 1], "angle": 10}})"),
     { "primitives[0]", "either 'axis' or 'rotation'" });
-  ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "axis": [0, 0, 0]})"), { "primitives[0]", "axis" });
+  ExpectModelError(
+    Doc(R"({"type": "cylinder", "radius": 1, "axis": [0, 0, 0]})"), { "primitives[0]", "axis" });
   ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 1]}})"),
     { "primitives[0].rotation", "expected" });
-  ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 1], "angle": 1, "x": 2}})"),
+  ExpectModelError(
+    Doc(
+      R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 1], "angle": 1, "x": 2}})"),
     { "primitives[0].rotation" });
-  ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 1], "angle": "10"}})"),
+  ExpectModelError(
+    Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 1], "angle": "10"}})"),
     { "primitives[0].rotation.angle", "expected a number" });
-  ExpectModelError(Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 0], "angle": 10}})"),
+  ExpectModelError(
+    Doc(R"({"type": "cylinder", "radius": 1, "rotation": {"axis": [0, 0, 0], "angle": 10}})"),
     { "primitives[0]", "rotation axis" });
 }
 
@@ -499,8 +534,8 @@ TEST(Model, NonFiniteNumbersNameThePath)
       std::sscanf(error.c_str() + l, "line %ld, column %ld", &gotLine, &gotColumn);
     EXPECT_TRUE(gotLine == line && gotColumn >= column &&
       gotColumn <= column + static_cast<long>(c.Token.size()))
-      << "error \"" << error << "\" names neither " << c.Path << " nor line " << line
-      << ", column " << column;
+      << "error \"" << error << "\" names neither " << c.Path << " nor line " << line << ", column "
+      << column;
   }
 }
 

@@ -20,8 +20,8 @@ pisurf::Model Parse(const std::string& text)
 
 TEST(ModelProduct, RenameParameterWholeNamesOnly)
 {
-  EXPECT_EQ(pisurf::RenameParameter("(x-a)^2+ab*a2+a*2e-3+a", "a", "a_2"),
-    "(x-a_2)^2+ab*a2+a_2*2e-3+a_2");
+  EXPECT_EQ(
+    pisurf::RenameParameter("(x-a)^2+ab*a2+a*2e-3+a", "a", "a_2"), "(x-a_2)^2+ab*a2+a_2*2e-3+a_2");
   EXPECT_EQ(pisurf::RenameParameter("1e5*e+e", "e", "f"), "1e5*f+f");
   EXPECT_EQ(pisurf::RenameParameter("", "a", "b"), "");
 }

@@ -92,7 +92,8 @@ TEST(MoleculeField, FirstRootIsTheFirstCrossing)
   const Cluster c = MakeCluster(12.0, 13);
   pisurf::MoleculeSettings settings;
   pisurf::MoleculeField field(c.Centers, c.Radii, settings, c.Region);
-  auto exactF = [&](const double p[3]) {
+  auto exactF = [&](const double p[3])
+  {
     double logAbs;
     const int sign = field.EvaluateExactSignAndLog(p, logAbs);
     return sign > 0 && logAbs > std::log(field.GetLevel()) ? 1 : -1;
@@ -305,7 +306,7 @@ TEST(MoleculeField, LocalRefineEdgeFindsTheRoot)
   }
   EXPECT_GE(refined, 2000);
   EXPECT_LT(small, refined / 100);
-  EXPECT_GT(walls, 20); // edges with a thin wall between ends of one sign
+  EXPECT_GT(walls, 20);   // edges with a thin wall between ends of one sign
   EXPECT_GT(offOuter, 0); // lens sheets were among them
 
   // A diagonal segment or a Global field: not handled (the mesher's general method).
@@ -347,7 +348,8 @@ TEST(MoleculeField, OffOuterSideBoxEqualsPointwise)
           {
             const double p[3] = { origin[0] + i * spacing[0], origin[1] + j * spacing[1],
               origin[2] + k * spacing[2] };
-            const unsigned char got = flags[(k - first[2]) * 81 + (j - first[1]) * 9 + (i - first[0])];
+            const unsigned char got =
+              flags[(k - first[2]) * 81 + (j - first[1]) * 9 + (i - first[0])];
             ASSERT_EQ(got, field.OffOuterSide(p) ? 1 : 0);
             marked += got;
             ++points;
@@ -374,7 +376,8 @@ TEST(MoleculeField, CastRayFindsEveryRoot)
     const Cluster c = MakeCluster(size, 5);
     for (const double r : { 0.01, 1.0, 30.0 })
     {
-      for (const pisurf::MoleculeMode mode : { pisurf::MoleculeMode::Global, pisurf::MoleculeMode::Local })
+      for (const pisurf::MoleculeMode mode :
+        { pisurf::MoleculeMode::Global, pisurf::MoleculeMode::Local })
       {
         pisurf::MoleculeSettings settings;
         settings.Mode = mode;
@@ -414,7 +417,8 @@ TEST(MoleculeField, CastRayFindsEveryRoot)
           {
             EXPECT_NEAR(first[0].T, found[0].T, 2 * options.Tolerance);
           }
-          auto F = [&](double t) {
+          auto F = [&](double t)
+          {
             const double p[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
             return field.Evaluate(p);
           };
@@ -448,9 +452,9 @@ TEST(MoleculeField, CastRayFindsEveryRoot)
             const double tb = length * s / samples, vb = F(tb);
             if ((va < 0) != (vb < 0))
             {
-              const bool hit = std::any_of(found.begin(), found.end(), [&](const pisurf::RayRoot& x) {
-                return x.T >= ta - options.Tolerance && x.T <= tb + options.Tolerance;
-              });
+              const bool hit = std::any_of(found.begin(), found.end(),
+                [&](const pisurf::RayRoot& x)
+                { return x.T >= ta - options.Tolerance && x.T <= tb + options.Tolerance; });
               EXPECT_TRUE(hit) << "a sign change in [" << ta << ", " << tb << "] without a root";
             }
             ta = tb;

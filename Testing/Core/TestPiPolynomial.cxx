@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of pisurf::Polynomial3 (PiPolynomial.h).
+#include "PiCoreTestUtilities.h"
 #include "PiExpression.h"
 #include "PiPolynomial.h"
-#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -104,8 +104,8 @@ TEST(Polynomial3, AddTermMergesSortsAndCancels)
   const auto& t = p.GetTerms();
   for (size_t n = 1; n < t.size(); ++n)
   {
-    EXPECT_LT(std::make_tuple(t[n - 1].I, t[n - 1].J, t[n - 1].K),
-      std::make_tuple(t[n].I, t[n].J, t[n].K));
+    EXPECT_LT(
+      std::make_tuple(t[n - 1].I, t[n - 1].J, t[n - 1].K), std::make_tuple(t[n].I, t[n].J, t[n].K));
   }
   // Cancelling the degree-3 term lowers the degree.
   p.AddTerm(-3.0, 0, 2, 1);
@@ -200,8 +200,7 @@ TEST(Polynomial3, AlgebraMatchesDirectEvaluation)
       EXPECT_TRUE(Near((a - b).Evaluate(q.data()), va - vb, tolSum));
       EXPECT_TRUE(Near((-a).Evaluate(q.data()), -va, 1e-15));
       EXPECT_TRUE(Near(a.Scaled(s).Evaluate(q.data()), s * va, 1e-13 * std::max(1.0, 3 * sa)));
-      EXPECT_TRUE(
-        Near((a * b).Evaluate(q.data()), va * vb, 1e-12 * std::max(1.0, sa * sb)))
+      EXPECT_TRUE(Near((a * b).Evaluate(q.data()), va * vb, 1e-12 * std::max(1.0, sa * sb)))
         << a.ToString() << " times " << b.ToString();
     }
     // Degrees add up under the product (non-zero leading parts never cancel in
@@ -277,10 +276,11 @@ TEST(Polynomial3, ComposeMatchesEvaluationOfTheAffineMap)
       double qa[3];
       for (int i = 0; i < 3; ++i)
       {
-        qa[i] = std::fabs(A[i][0] * x[0]) + std::fabs(A[i][1] * x[1]) +
-          std::fabs(A[i][2] * x[2]) + std::fabs(b[i]);
+        qa[i] = std::fabs(A[i][0] * x[0]) + std::fabs(A[i][1] * x[1]) + std::fabs(A[i][2] * x[2]) +
+          std::fabs(b[i]);
       }
-      EXPECT_TRUE(Near(c.Evaluate(x.data()), p.Evaluate(q), 1e-12 * std::max(1.0, AbsEvaluate(p, qa))))
+      EXPECT_TRUE(
+        Near(c.Evaluate(x.data()), p.Evaluate(q), 1e-12 * std::max(1.0, AbsEvaluate(p, qa))))
         << p.ToString();
     }
   }
@@ -304,8 +304,8 @@ TEST(Polynomial3, GradientMatchesFiniteDifferences)
     double g[3];
     const double v = p.EvaluateWithGradient(q.data(), g);
     EXPECT_TRUE(Near(v, p.Evaluate(q.data()), 1e-14 * std::max(1.0, AbsEvaluate(p, q.data()))));
-    const Point fd = FiniteDifferenceGradient(
-      [&](const double* x) { return p.Evaluate(x); }, q.data(), 1e-5);
+    const Point fd =
+      FiniteDifferenceGradient([&](const double* x) { return p.Evaluate(x); }, q.data(), 1e-5);
     for (int k = 0; k < 3; ++k)
     {
       EXPECT_TRUE(Near(g[k], fd[k], 1e-6 * std::max(1.0, AbsEvaluate(p, q.data()) * 36)))
@@ -477,7 +477,8 @@ TEST(Polynomial3, ExpandAboutGivesTheShiftedPolynomial)
 TEST(Polynomial3, GradientIsExactForAKnownPolynomial)
 {
   // P = x³y²z − 4xz² + 7y: ∇P = (3x²y²z − 4z², 2x³yz + 7, x³y² − 8xz).
-  const Polynomial3 p = X().Pow(3) * Y().Pow(2) * Z() - (X() * Z().Pow(2)).Scaled(4) + Y().Scaled(7);
+  const Polynomial3 p =
+    X().Pow(3) * Y().Pow(2) * Z() - (X() * Z().Pow(2)).Scaled(4) + Y().Scaled(7);
   Random rng(6);
   for (int n = 0; n < 20; ++n)
   {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of the primitives: BuildFactor, PolynomialFactor, RotationMatrix and the
 // type names (PiPrimitiveSpec.h).
-#include "PiPrimitiveSpec.h"
 #include "PiCoreTestUtilities.h"
+#include "PiPrimitiveSpec.h"
 
 #include <gtest/gtest.h>
 
@@ -30,20 +30,19 @@ Closed ClosedForm(const PrimitiveSpec& s)
     case PrimitiveType::Sphere:
       return [=](const double* q) { return q[0] * q[0] + q[1] * q[1] + q[2] * q[2] - R * R; };
     case PrimitiveType::Ellipsoid:
-      return [=](const double* q) {
-        return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) + (q[2] / c) * (q[2] / c) - 1;
-      };
+      return [=](const double* q)
+      { return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) + (q[2] / c) * (q[2] / c) - 1; };
     case PrimitiveType::Superellipsoid:
     {
       const int n = s.Exponent;
-      return [=](const double* q) {
-        return std::pow(q[0] / a, n) + std::pow(q[1] / b, n) + std::pow(q[2] / c, n) - 1;
-      };
+      return [=](const double* q)
+      { return std::pow(q[0] / a, n) + std::pow(q[1] / b, n) + std::pow(q[2] / c, n) - 1; };
     }
     case PrimitiveType::Torus:
     {
       const double M = s.MajorRadius, m = s.MinorRadius;
-      return [=](const double* q) {
+      return [=](const double* q)
+      {
         const double uv = q[0] * q[0] + q[1] * q[1];
         const double t = uv + q[2] * q[2] + M * M - m * m;
         return t * t - 4 * M * M * uv;
@@ -64,17 +63,17 @@ Closed ClosedForm(const PrimitiveSpec& s)
       return [=](const double* q) { return q[0] * q[0] + q[1] * q[1] - t * t * q[2] * q[2]; };
     }
     case PrimitiveType::Hyperboloid1:
-      return [=](const double* q) {
-        return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) - (q[2] / c) * (q[2] / c) - 1;
-      };
+      return [=](const double* q)
+      { return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) - (q[2] / c) * (q[2] / c) - 1; };
     case PrimitiveType::Hyperboloid2:
-      return [=](const double* q) {
-        return (q[2] / c) * (q[2] / c) - (q[0] / a) * (q[0] / a) - (q[1] / b) * (q[1] / b) - 1;
-      };
+      return [=](const double* q)
+      { return (q[2] / c) * (q[2] / c) - (q[0] / a) * (q[0] / a) - (q[1] / b) * (q[1] / b) - 1; };
     case PrimitiveType::Paraboloid:
-      return [=](const double* q) { return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) - q[2]; };
+      return [=](const double* q)
+      { return (q[0] / a) * (q[0] / a) + (q[1] / b) * (q[1] / b) - q[2]; };
     case PrimitiveType::HyperbolicParaboloid:
-      return [=](const double* q) { return (q[0] / a) * (q[0] / a) - (q[1] / b) * (q[1] / b) - q[2]; };
+      return [=](const double* q)
+      { return (q[0] / a) * (q[0] / a) - (q[1] / b) * (q[1] / b) - q[2]; };
     case PrimitiveType::Polynomial:
       // Only for the expression used below.
       return [=](const double* q) {
@@ -168,7 +167,8 @@ void CompareWithClosedForm(const PolynomialFactor& f, const Closed& closed,
   const std::function<void(const double*, double*)>& local, double sign, Random& rng,
   const std::string& what)
 {
-  auto world = [&](const double* p) {
+  auto world = [&](const double* p)
+  {
     double q[3];
     local(p, q);
     return sign * closed(q);
@@ -207,8 +207,8 @@ const PrimitiveType AllTypes[] = { PrimitiveType::Sphere, PrimitiveType::Ellipso
 
 TEST(PrimitiveSpec, TypeNames)
 {
-  static_assert(sizeof(AllTypes) / sizeof(AllTypes[0]) ==
-      static_cast<size_t>(PrimitiveType::NumberOfTypes),
+  static_assert(
+    sizeof(AllTypes) / sizeof(AllTypes[0]) == static_cast<size_t>(PrimitiveType::NumberOfTypes),
     "every type is tested");
   const char* keys[] = { "sphere", "ellipsoid", "superellipsoid", "torus", "plane", "cylinder",
     "cone", "hyperboloid1", "hyperboloid2", "paraboloid", "hyperbolic_paraboloid", "polynomial" };
@@ -244,7 +244,8 @@ TEST(PrimitiveSpec, EveryTypeMatchesItsClosedFormAtTheOrigin)
       const PolynomialFactor f = Build(s);
       CompareWithClosedForm(
         f, ClosedForm(s),
-        [](const double* p, double* q) {
+        [](const double* p, double* q)
+        {
           q[0] = p[0];
           q[1] = p[1];
           q[2] = p[2];
@@ -269,7 +270,8 @@ TEST(PrimitiveSpec, EveryTypeMatchesItsClosedFormWithCenterScaleAndNegate)
       const PolynomialFactor f = Build(s);
       CompareWithClosedForm(
         f, ClosedForm(s),
-        [c](const double* p, double* q) {
+        [c](const double* p, double* q)
+        {
           for (int i = 0; i < 3; ++i)
             q[i] = p[i] - c[i];
         },
@@ -298,7 +300,8 @@ TEST(PrimitiveSpec, EveryTypeMatchesItsClosedFormUnderRotation)
       const PolynomialFactor f = Build(s);
       CompareWithClosedForm(
         f, ClosedForm(s),
-        [&](const double* p, double* q) {
+        [&](const double* p, double* q)
+        {
           for (int i = 0; i < 3; ++i)
           {
             q[i] = M[0][i] * (p[0] - c[0]) + M[1][i] * (p[1] - c[1]) + M[2][i] * (p[2] - c[2]);
@@ -332,9 +335,11 @@ TEST(PrimitiveSpec, AxisOrientationPutsWAlongTheAxis)
         double d = 0.0;
         for (int k = 0; k < 3; ++k)
           d += f.A[i][k] * f.A[j][k];
-        EXPECT_NEAR(d, i == j ? 1.0 : 0.0, 1e-14) << "A·Aᵀ for axis " << a[0] << " " << a[1] << " " << a[2];
+        EXPECT_NEAR(d, i == j ? 1.0 : 0.0, 1e-14)
+          << "A·Aᵀ for axis " << a[0] << " " << a[1] << " " << a[2];
       }
-      EXPECT_NEAR(f.A[i][0] * u[0] + f.A[i][1] * u[1] + f.A[i][2] * u[2], i == 2 ? 1.0 : 0.0, 1e-14);
+      EXPECT_NEAR(
+        f.A[i][0] * u[0] + f.A[i][1] * u[1] + f.A[i][2] * u[2], i == 2 ? 1.0 : 0.0, 1e-14);
       // B = −A·center.
       EXPECT_NEAR(f.B[i], -(f.A[i][0] * c[0] + f.A[i][1] * c[1] + f.A[i][2] * c[2]), 1e-14);
     }
@@ -361,10 +366,10 @@ TEST(PrimitiveSpec, AxiallySymmetricTypesAlongAnArbitraryAxis)
     const Point c = rng.InBox(-1, 1);
     const double n = std::hypot(a[0], a[1], a[2]);
     const Point ah = { a[0] / n, a[1] / n, a[2] / n };
-    auto wOf = [&](const double* p) {
-      return (p[0] - c[0]) * ah[0] + (p[1] - c[1]) * ah[1] + (p[2] - c[2]) * ah[2];
-    };
-    auto rho2 = [&](const double* p) {
+    auto wOf = [&](const double* p)
+    { return (p[0] - c[0]) * ah[0] + (p[1] - c[1]) * ah[1] + (p[2] - c[2]) * ah[2]; };
+    auto rho2 = [&](const double* p)
+    {
       const double d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
         (p[2] - c[2]) * (p[2] - c[2]);
       const double w = wOf(p);
@@ -382,7 +387,8 @@ TEST(PrimitiveSpec, AxiallySymmetricTypesAlongAnArbitraryAxis)
       const PolynomialFactor f = Build(s);
       CompareWithClosedForm(
         f, closed,
-        [&](const double* p, double* q) {
+        [&](const double* p, double* q)
+        {
           q[0] = std::sqrt(std::max(0.0, rho2(p)));
           q[1] = 0.0;
           q[2] = wOf(p);
@@ -479,7 +485,8 @@ TEST(PrimitiveSpec, RotationMatrix)
       }
       // The axis is fixed.
       const double n = std::hypot(axis[0], axis[1], axis[2]);
-      EXPECT_NEAR(R[i][0] * axis[0] + R[i][1] * axis[1] + R[i][2] * axis[2], axis[i], 1e-14 * n * 4);
+      EXPECT_NEAR(
+        R[i][0] * axis[0] + R[i][1] * axis[1] + R[i][2] * axis[2], axis[i], 1e-14 * n * 4);
     }
   }
   // Right-handed: 90° about z takes x to y.
@@ -580,8 +587,8 @@ TEST(PrimitiveSpec, BoundsContainTheZeroSet)
         double p[3];
         for (int i = 0; i < 3; ++i)
         {
-          p[i] = f.A[0][i] * (q[0] - f.B[0]) + f.A[1][i] * (q[1] - f.B[1]) +
-            f.A[2][i] * (q[2] - f.B[2]);
+          p[i] =
+            f.A[0][i] * (q[0] - f.B[0]) + f.A[1][i] * (q[1] - f.B[1]) + f.A[2][i] * (q[2] - f.B[2]);
         }
         ASSERT_NEAR(f.Evaluate(p), 0.0, 1e-10 * ValueScale(f, p)) << TypeKey(t) << " sample";
         for (int i = 0; i < 3; ++i)
@@ -717,8 +724,8 @@ TEST(PrimitiveSpec, OffCentreExpressionsAreCentred)
           x[a] = corner == 8 ? p[a] : box[2 * a + ((corner >> a) & 1)];
         }
         const double v = f.Evaluate(x);
-        EXPECT_TRUE(range.Lo <= v && v <= range.Hi) << c.Expression << ": " << v << " outside ["
-                                                    << range.Lo << ", " << range.Hi << "]";
+        EXPECT_TRUE(range.Lo <= v && v <= range.Hi)
+          << c.Expression << ": " << v << " outside [" << range.Lo << ", " << range.Hi << "]";
       }
     }
   }
@@ -726,7 +733,8 @@ TEST(PrimitiveSpec, OffCentreExpressionsAreCentred)
 
 TEST(PrimitiveSpec, InvalidParametersNameTheParameter)
 {
-  auto spec = [](PrimitiveType t) {
+  auto spec = [](PrimitiveType t)
+  {
     PrimitiveSpec s;
     s.Type = t;
     s.Expression = "x + y";
@@ -742,11 +750,12 @@ TEST(PrimitiveSpec, InvalidParametersNameTheParameter)
     s.Type = PrimitiveType::Cylinder;
     ExpectBuildError(s, { "radius", "positive" });
   }
-  for (PrimitiveType t : { PrimitiveType::Ellipsoid, PrimitiveType::Superellipsoid,
-         PrimitiveType::Hyperboloid1, PrimitiveType::Hyperboloid2, PrimitiveType::Paraboloid,
-         PrimitiveType::HyperbolicParaboloid })
+  for (PrimitiveType t :
+    { PrimitiveType::Ellipsoid, PrimitiveType::Superellipsoid, PrimitiveType::Hyperboloid1,
+      PrimitiveType::Hyperboloid2, PrimitiveType::Paraboloid, PrimitiveType::HyperbolicParaboloid })
   {
-    const int count = (t == PrimitiveType::Paraboloid || t == PrimitiveType::HyperbolicParaboloid) ? 2 : 3;
+    const int count =
+      (t == PrimitiveType::Paraboloid || t == PrimitiveType::HyperbolicParaboloid) ? 2 : 3;
     for (int i = 0; i < count; ++i)
     {
       for (double bad : { 0.0, -2.0, nan })
@@ -861,7 +870,8 @@ TEST(PrimitiveSpec, ScaleOverflowIsRefused)
   const bool ok = BuildFactor(s, {}, f, error);
   if (ok)
   {
-    EXPECT_TRUE(f.Poly.IsFinite()) << "accepted with non-finite coefficients: " << f.Poly.ToString();
+    EXPECT_TRUE(f.Poly.IsFinite())
+      << "accepted with non-finite coefficients: " << f.Poly.ToString();
   }
   else
   {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of pisurf::ProductKernel (PiProductKernel.h): F = Π f_i − r and its gradient.
-#include "PiProductKernel.h"
-#include "PiFloat.h"
 #include "PiCoreTestUtilities.h"
+#include "PiFloat.h"
+#include "PiProductKernel.h"
 
 #include <gtest/gtest.h>
 
@@ -67,29 +67,33 @@ Factor Generic(GenericFunction fn)
 /// A constant generic factor with a constant gradient.
 Factor ConstantFactor(double value, double gradient = 0.0)
 {
-  return Generic([value, gradient](const double*, double* g) {
-    if (g)
+  return Generic(
+    [value, gradient](const double*, double* g)
     {
-      g[0] = gradient;
-      g[1] = -gradient;
-      g[2] = 0.5 * gradient;
-    }
-    return value;
-  });
+      if (g)
+      {
+        g[0] = gradient;
+        g[1] = -gradient;
+        g[2] = 0.5 * gradient;
+      }
+      return value;
+    });
 }
 
 /// sin(x) + y·z − 0.3, with its exact gradient.
 Factor Wave()
 {
-  return Generic([](const double* p, double* g) {
-    if (g)
+  return Generic(
+    [](const double* p, double* g)
     {
-      g[0] = std::cos(p[0]);
-      g[1] = p[2];
-      g[2] = p[1];
-    }
-    return std::sin(p[0]) + p[1] * p[2] - 0.3;
-  });
+      if (g)
+      {
+        g[0] = std::cos(p[0]);
+        g[1] = p[2];
+        g[2] = p[1];
+      }
+      return std::sin(p[0]) + p[1] * p[2] - 0.3;
+    });
 }
 
 /// 30 unit spheres about 1e5 away (about 2^33 each near the origin: their plain product,
@@ -289,8 +293,8 @@ TEST(ProductKernel, ValueAndGradientMatchTheDefinition)
         EXPECT_NEAR(g[c], d.G[c], d.GradientTolerance) << n << " factors, component " << c;
       }
       // And against finite differences of F itself.
-      const Point fd = FiniteDifferenceGradient(
-        [&](const double* x) { return k.Evaluate(x); }, p.data(), 1e-6);
+      const Point fd =
+        FiniteDifferenceGradient([&](const double* x) { return k.Evaluate(x); }, p.data(), 1e-6);
       for (int c = 0; c < 3; ++c)
       {
         EXPECT_NEAR(g[c], fd[c], 1e-5 * (1.0 + d.GradientTolerance * 1e13)) << "component " << c;
@@ -403,8 +407,9 @@ TEST(ProductKernel, PointsAndLinesAgreeWithEvaluate)
 TEST(ProductKernel, RowEvaluationHasTheBitsOfPointEvaluation)
 {
   Random rng(45);
-  auto check = [&](const ProductKernel& k, const double o[3], const double d[3], int count,
-                 const char* what) {
+  auto check =
+    [&](const ProductKernel& k, const double o[3], const double d[3], int count, const char* what)
+  {
     std::vector<double> coefficients(k.GetLineCoefficientCount());
     k.RestrictLine(o, d, coefficients.data());
     const double t0 = -0.5 * (count - 1);
@@ -450,16 +455,18 @@ TEST(ProductKernel, GenericFactorsMixWithPolynomialOnes)
 {
   const double c[3] = { 0.2, -0.1, 0.3 };
   std::vector<Factor> factors = { Sphere(c, 0.8), Wave(), Plane(1, 1, 0, 0.2),
-    Generic([](const double* p, double* g) {
-      // e^x·(y − 1)
-      if (g)
+    Generic(
+      [](const double* p, double* g)
       {
-        g[0] = std::exp(p[0]) * (p[1] - 1);
-        g[1] = std::exp(p[0]);
-        g[2] = 0.0;
-      }
-      return std::exp(p[0]) * (p[1] - 1);
-    }) };
+        // e^x·(y − 1)
+        if (g)
+        {
+          g[0] = std::exp(p[0]) * (p[1] - 1);
+          g[1] = std::exp(p[0]);
+          g[2] = 0.0;
+        }
+        return std::exp(p[0]) * (p[1] - 1);
+      }) };
   const ProductKernel k(factors, 0.05);
   Random rng(45);
   for (int n = 0; n < 50; ++n)
@@ -471,8 +478,8 @@ TEST(ProductKernel, GenericFactorsMixWithPolynomialOnes)
     const double f2 = (x + y) / std::sqrt(2.0) - 0.2;
     const double f3 = std::exp(x) * (y - 1);
     const double F = f0 * f1 * f2 * f3 - 0.05;
-    const double scale = 10.0 * (std::fabs(f0) + 1) * (std::fabs(f1) + 1) * (std::fabs(f2) + 1) *
-      (std::fabs(f3) + 1);
+    const double scale =
+      10.0 * (std::fabs(f0) + 1) * (std::fabs(f1) + 1) * (std::fabs(f2) + 1) * (std::fabs(f3) + 1);
     EXPECT_NEAR(k.Evaluate(p.data()), F, 1e-14 * scale);
     double g[3];
     EXPECT_NEAR(k.EvaluateWithGradient(p.data(), g), F, 1e-14 * scale);
@@ -529,7 +536,8 @@ TEST(ProductKernel, ScaledAndLogFormsAgreeWithEvaluate)
       double logAbs;
       const int sign = k.EvaluateSignAndLog(p.data(), logAbs);
       EXPECT_EQ(sign, F > 0 ? 1 : -1);
-      EXPECT_NEAR(logAbs, std::log(std::fabs(F)), 1e-13 * (std::fabs(P) + r) / std::fabs(F) + 1e-14);
+      EXPECT_NEAR(
+        logAbs, std::log(std::fabs(F)), 1e-13 * (std::fabs(P) + r) / std::fabs(F) + 1e-14);
     }
   }
   // Exactly zero: a factor vanishes and r = 0.
@@ -625,7 +633,8 @@ TEST(ProductKernel, EdgeOfTheDoubleRange)
   }
   // 1.5·2^1024: just beyond; value and gradient clamp, neither becomes inf.
   {
-    const ProductKernel k({ ConstantFactor(0x1.8p512, 0x1.8p512), ConstantFactor(0x1p512, 0.0) }, 0.0);
+    const ProductKernel k(
+      { ConstantFactor(0x1.8p512, 0x1.8p512), ConstantFactor(0x1p512, 0.0) }, 0.0);
     EXPECT_EQ(k.Evaluate(p), DBL_MAX);
     double g[3];
     EXPECT_EQ(k.EvaluateWithGradient(p, g), DBL_MAX);
@@ -868,11 +877,13 @@ TEST(ProductKernel, SharedBetweenThreads)
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)
   {
-    threads.emplace_back([&, t]() {
-      for (int rep = 0; rep < 5; ++rep)
-        for (int r = t; r < rows; r += 4)
-          k.EvaluateLine(origins[r].data(), steps[r].data(), count, &got[r * count]);
-    });
+    threads.emplace_back(
+      [&, t]()
+      {
+        for (int rep = 0; rep < 5; ++rep)
+          for (int r = t; r < rows; r += 4)
+            k.EvaluateLine(origins[r].data(), steps[r].data(), count, &got[r * count]);
+      });
   }
   for (auto& th : threads)
     th.join();
@@ -939,8 +950,8 @@ protected:
 
   struct Reference
   {
-    int SignP = 1;       // sign of Π f_i
-    long double LogP = 0; // Σ ln|f_i|
+    int SignP = 1;         // sign of Π f_i
+    long double LogP = 0;  // Σ ln|f_i|
     long double Slack = 0; // how far the double evaluation may be off in LogP
     bool HasZero = false;
   };
@@ -1045,7 +1056,8 @@ TEST_F(ManySpheres, GridIsFiniteAndSignsMatchTheLogSum)
     if (!ExpectedF(ref, sign, logAbs))
       continue;
     (sign > 0 ? positive : negative)++;
-    EXPECT_EQ(F > 0 ? 1 : -1, sign) << "Evaluate at point " << i << ", log|P| = " << (double)ref.LogP;
+    EXPECT_EQ(F > 0 ? 1 : -1, sign)
+      << "Evaluate at point " << i << ", log|P| = " << (double)ref.LogP;
     EXPECT_EQ(Fg > 0 ? 1 : -1, sign) << "EvaluateWithGradient at point " << i;
     EXPECT_EQ(points[i] > 0 ? 1 : -1, sign) << "EvaluatePoints at point " << i;
     EXPECT_EQ(line[i] > 0 ? 1 : -1, sign) << "EvaluateLine at point " << i;
@@ -1072,10 +1084,11 @@ TEST_F(ManySpheres, GridIsFiniteAndSignsMatchTheLogSum)
     EXPECT_EQ(m > 0 ? 1 : -1, sign) << "EvaluateScaled at point " << i;
     EXPECT_GE(std::fabs(m), 0.5);
     EXPECT_LT(std::fabs(m), 1.0);
-    const long double scaledLog = std::log(std::fabs(static_cast<long double>(m))) +
-      e * std::log(static_cast<long double>(2));
+    const long double scaledLog =
+      std::log(std::fabs(static_cast<long double>(m))) + e * std::log(static_cast<long double>(2));
     const long double tol = 1e-9L + 2 * ref.Slack + 1e-13L * std::fabs(logAbs);
-    EXPECT_NEAR(static_cast<double>(scaledLog), static_cast<double>(logAbs), static_cast<double>(tol))
+    EXPECT_NEAR(
+      static_cast<double>(scaledLog), static_cast<double>(logAbs), static_cast<double>(tol))
       << "EvaluateScaled at point " << i;
     // Distance and normal, from Σ∇f_i/f_i (long double, independent of the kernel).
     {
@@ -1098,7 +1111,8 @@ TEST_F(ManySpheres, GridIsFiniteAndSignsMatchTheLogSum)
       const double dist = Kernel->EvaluateDistance(p, normal);
       ASSERT_TRUE(std::isfinite(dist)) << "point " << i;
       EXPECT_EQ(dist > 0 ? 1 : -1, sign) << "EvaluateDistance at point " << i;
-      EXPECT_TRUE(RelativelyNear(dist, static_cast<double>(expectedD), 1e-9 + 2 * static_cast<double>(ref.Slack)))
+      EXPECT_TRUE(RelativelyNear(
+        dist, static_cast<double>(expectedD), 1e-9 + 2 * static_cast<double>(ref.Slack)))
         << "EvaluateDistance at point " << i;
       for (int a = 0; a < 3; ++a)
         EXPECT_NEAR(normal[a], static_cast<double>(ref.SignP * S[a] / sn),
@@ -1212,7 +1226,8 @@ TEST(ProductKernel, StarEvaluationAgreesWithSeparateEvaluations)
 // with values beyond 2^64 after plain ones (the switch to the scaled form midway).
 TEST(ProductKernel, StarEvaluationOfHugeProducts)
 {
-  auto check = [](const ProductKernel& k, const double p[3], double probe) {
+  auto check = [](const ProductKernel& k, const double p[3], double probe)
+  {
     double n1[3], n2[3], g1, g2, log1, log2, m1[6], m2[6];
     long e1[6], e2[6];
     int near1, near2;
@@ -1266,7 +1281,8 @@ TEST(ProductKernel, StarEvaluationOfHugeProducts)
 // is exactly 0, where the plain product overflows (the scaled path) and far points.
 TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
 {
-  auto check = [&](const ProductKernel& k, const std::vector<Point>& points, const char* what) {
+  auto check = [&](const ProductKernel& k, const std::vector<Point>& points, const char* what)
+  {
     const int count = static_cast<int>(points.size());
     double p[ProductKernel::MaxVertices][3], n[ProductKernel::MaxVertices][3];
     double g[ProductKernel::MaxVertices];
@@ -1285,7 +1301,8 @@ TEST(ProductKernel, VerticesFourAtATimeHaveTheSingleVertexBits)
       EXPECT_EQ(nearest[j], near1) << what << " point " << j;
     }
   };
-  auto aligned = [](Random& rng) {
+  auto aligned = [](Random& rng)
+  {
     PrimitiveSpec s;
     const int types[] = { 0, 1, 2, 3, 5, 6, 9, 11 };
     s.Type = static_cast<PrimitiveType>(types[rng.Integer(0, 7)]);
@@ -1392,15 +1409,15 @@ TEST(ProductKernel, SegmentEvaluationGivesFAndItsSlopeAlongTheEdge)
       const Direct direct = DirectEvaluation(factors, r, x);
       ASSERT_TRUE(ok[j]) << "trial " << trial;
       EXPECT_EQ(value[j], P - r) << "trial " << trial;
-      const double along =
-        direct.G[0] * d[j][0] + direct.G[1] * d[j][1] + direct.G[2] * d[j][2];
+      const double along = direct.G[0] * d[j][0] + direct.G[1] * d[j][1] + direct.G[2] * d[j][2];
       const double length = std::fabs(d[j][0]) + std::fabs(d[j][1]) + std::fabs(d[j][2]);
       EXPECT_NEAR(slope[j], along, direct.GradientTolerance * length) << "trial " << trial;
     }
   }
   // A far point (the quartic's coordinates beyond 1e30) and a product beyond the plain
   // range: not ok, the caller's general path.
-  double a[2][3] = { { 0.5, 0.5, 0.0 }, { 2e30, 0.0, 0.0 } }, d[2][3] = { { 0.1, 0, 0 }, { 0.1, 0, 0 } };
+  double a[2][3] = { { 0.5, 0.5, 0.0 }, { 2e30, 0.0, 0.0 } },
+         d[2][3] = { { 0.1, 0, 0 }, { 0.1, 0, 0 } };
   double s[2] = { 0.5, 0.5 }, value[2], slope[2];
   bool ok[2];
   k.EvaluateOnSegments(2, a, d, s, value, slope, ok);
@@ -1425,9 +1442,9 @@ TEST(Float, FrexpAndLdexpHaveTheLibraryBits)
   auto same = [](double a, double b) { return SameBits(a, b) || (std::isnan(a) && std::isnan(b)); };
   std::vector<double> values = { 0.0, -0.0, 1.0, -1.0, 0.5, 3.0, 1e-300, -1e300,
     std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-    std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(),
-    -4.9e-320, std::numeric_limits<double>::infinity(),
-    -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN() };
+    std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(), -4.9e-320,
+    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::quiet_NaN() };
   std::mt19937_64 random(7);
   for (int k = 0; k < 20000; ++k)
   {
@@ -1567,8 +1584,8 @@ TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
           single.EvaluateLine(origin, step, Samples, row);
           for (int i = 0; i < Samples; ++i)
           {
-            const double p[3] = { i == Samples - 1 ? box[1] : box[0] + step[0] * i,
-              origin[1], origin[2] };
+            const double p[3] = { i == Samples - 1 ? box[1] : box[0] + step[0] * i, origin[1],
+              origin[2] };
             const double values[2] = { factor.Evaluate(p), row[i] };
             int o = 0;
             for (int a = 0; a < 3; ++a)
@@ -1577,13 +1594,12 @@ TEST(ProductKernel, TaylorEnclosuresHoldEverySample)
             }
             for (const double v : values)
             {
-              EXPECT_TRUE(whole.Contains(v)) << "factor " << f << " box " << box[0] << " "
-                                             << box[2] << " " << box[4] << " size " << size
-                                             << ": " << v << " outside [" << whole.Lo << ", "
-                                             << whole.Hi << "]";
+              EXPECT_TRUE(whole.Contains(v))
+                << "factor " << f << " box " << box[0] << " " << box[2] << " " << box[4] << " size "
+                << size << ": " << v << " outside [" << whole.Lo << ", " << whole.Hi << "]";
               EXPECT_TRUE(octants[o].Contains(v))
-                << "factor " << f << " octant " << o << ": " << v << " outside ["
-                << octants[o].Lo << ", " << octants[o].Hi << "]";
+                << "factor " << f << " octant " << o << ": " << v << " outside [" << octants[o].Lo
+                << ", " << octants[o].Hi << "]";
             }
           }
         }
@@ -1663,7 +1679,8 @@ TEST(ProductKernel, TaylorDerivativeEnclosuresHoldTheGradient)
 // 67 % on the cup, 43 % on the table, 18 % on the ten spheres).
 TEST(ProductKernel, MonotoneOctantsAreMonotone)
 {
-  auto expressions = [](std::initializer_list<const char*> list) {
+  auto expressions = [](std::initializer_list<const char*> list)
+  {
     std::vector<Factor> fs;
     for (const char* e : list)
     {
@@ -1889,7 +1906,8 @@ TEST(ProductKernel, ClassificationIsRightAndTight)
           // The centre plane belongs to both halves: the lower octant must agree too.
           if (sign == 0 && (t[0] == 1 || t[1] == 1 || t[2] == 1))
           {
-            const int lower = o & ~((t[0] == 1 ? 1 : 0) | (t[1] == 1 ? 2 : 0) | (t[2] == 1 ? 4 : 0));
+            const int lower =
+              o & ~((t[0] == 1 ? 1 : 0) | (t[1] == 1 ? 2 : 0) | (t[2] == 1 ? 4 : 0));
             if (octants[lower] != 0)
             {
               EXPECT_EQ(octants[lower] > 0, F > 0);

@@ -2,11 +2,11 @@
 // Unit tests of pisurf::RayCaster's hit attributes (PiRayCaster.h): the singularity test
 // and its shortcut (ProductKernel::EvaluateVertexIfRegular), which skips the six probes
 // only where they could not have said "singular".
+#include "PiCoreTestUtilities.h"
 #include "PiModel.h"
 #include "PiProductField.h"
 #include "PiProductKernel.h"
 #include "PiRayCaster.h"
-#include "PiCoreTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +26,8 @@ namespace
 // The field of a kernel the test keeps (an empty owner: the kernel is not deleted).
 pisurf::ProductField Unowned(const pisurf::ProductKernel& k)
 {
-  return pisurf::ProductField(std::shared_ptr<const pisurf::ProductKernel>(std::shared_ptr<void>(), &k));
+  return pisurf::ProductField(
+    std::shared_ptr<const pisurf::ProductKernel>(std::shared_ptr<void>(), &k));
 }
 }
 
@@ -160,8 +161,8 @@ void CheckSkippedProbes(const Loaded& model, std::mt19937& rng, int samples, int
 {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double* b = model.Bounds;
-  const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
+  const double size = std::sqrt(
+    (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   const double h = 1e-3 * size;
   const ProductKernel& k = model.Kernel;
   const ProductKernel::ProbeBounds bounds = k.PrepareProbes(b, h);
@@ -242,18 +243,21 @@ TEST(RayCast, SkippedProbesCertifyTinyFactorsOfManySpheres)
   std::vector<std::array<double, 3>> centres;
   const Loaded model = TenSpheres(&centres);
   int certified = 0, refused = 0, tiny = 0;
-  CheckSkippedProbes(model, rng, 4000, certified, refused, [&](const double* p) {
-    double smallest = HUGE_VAL;
-    for (const auto& c : centres)
+  CheckSkippedProbes(model, rng, 4000, certified, refused,
+    [&](const double* p)
     {
-      const double d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
-        (p[2] - c[2]) * (p[2] - c[2]);
-      smallest = std::min(smallest, std::fabs(d2 - 0.64));
-    }
-    tiny += smallest < 1e-8 ? 1 : 0;
-  });
+      double smallest = HUGE_VAL;
+      for (const auto& c : centres)
+      {
+        const double d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
+          (p[2] - c[2]) * (p[2] - c[2]);
+        smallest = std::min(smallest, std::fabs(d2 - 0.64));
+      }
+      tiny += smallest < 1e-8 ? 1 : 0;
+    });
   std::printf("10 spheres: %d surface points certified, %d refused, %d with a factor below "
-              "1e-8\n", certified, refused, tiny);
+              "1e-8\n",
+    certified, refused, tiny);
   EXPECT_GT(certified, 10 * refused);
   EXPECT_GT(tiny, certified / 20);
 }
@@ -354,8 +358,8 @@ TEST(RayCast, HitsFourAtATimeHaveTheSingleHitAnswers)
         int nearest1;
         const bool singular1 = caster.Attributes(p[j], h, tolerance, n1, g1, nearest1);
         EXPECT_EQ(singular[j], singular1) << model.Name << " group " << group << " point " << j;
-        EXPECT_TRUE(SameBits(g[j], g1)) << model.Name << " group " << group << ": " << g[j]
-                                        << " vs " << g1;
+        EXPECT_TRUE(SameBits(g[j], g1))
+          << model.Name << " group " << group << ": " << g[j] << " vs " << g1;
         for (int c = 0; c < 3; ++c)
         {
           EXPECT_TRUE(SameBits(n[j][c], n1[c])) << model.Name << " group " << group;

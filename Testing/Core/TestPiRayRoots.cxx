@@ -63,8 +63,8 @@ std::vector<std::vector<double>> SpheresAndTorus(std::mt19937& rng, int trial, d
   return factors;
 }
 
-std::vector<RayRoot> Roots(const std::vector<std::vector<double>>& factors, double r, double t0,
-  double t1, bool all = true)
+std::vector<RayRoot> Roots(
+  const std::vector<std::vector<double>>& factors, double r, double t0, double t1, bool all = true)
 {
   RayRootOptions options;
   options.AllRoots = all;
@@ -122,9 +122,9 @@ int ExpectRootsAtSignChanges(const std::vector<std::vector<double>>& factors, do
     const long double value = F(tb);
     if ((value < 0) != (previous < 0))
     {
-      EXPECT_TRUE(std::any_of(roots.begin(), roots.end(), [&](const RayRoot& x) {
-        return x.T >= ta - tolerance && x.T <= tb + tolerance;
-      })) << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
+      EXPECT_TRUE(std::any_of(roots.begin(), roots.end(),
+        [&](const RayRoot& x) { return x.T >= ta - tolerance && x.T <= tb + tolerance; }))
+        << "trial " << trial << ": a sign change in [" << ta << ", " << tb << "] without a root";
       ++changes;
     }
     previous = value;
@@ -133,7 +133,8 @@ int ExpectRootsAtSignChanges(const std::vector<std::vector<double>>& factors, do
   {
     if (!x.Tangent)
     {
-      EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0) << "trial " << trial << " root " << x.T;
+      EXPECT_NE(F(x.T - tolerance) < 0, F(x.T + tolerance) < 0)
+        << "trial " << trial << " root " << x.T;
     }
   }
   return changes;
@@ -177,9 +178,9 @@ TEST(RayRoots, NearlyTouchingSpheresStayApart)
   // Unit spheres whose surfaces are 1e-6 apart on the ray, r = 0: four roots.
   const double gap = 1e-6;
   const double o[3] = { -3, 0, 0 }, d[3] = { 1, 0, 0 };
-  const auto roots = Roots(
-    { Along(Sphere(-1 - gap / 2, 0, 0, 1), o, d), Along(Sphere(1 + gap / 2, 0, 0, 1), o, d) }, 0.0,
-    0, 6);
+  const auto roots =
+    Roots({ Along(Sphere(-1 - gap / 2, 0, 0, 1), o, d), Along(Sphere(1 + gap / 2, 0, 0, 1), o, d) },
+      0.0, 0, 6);
   ASSERT_EQ(roots.size(), 4u);
   EXPECT_NEAR(roots[1].T, 3 - gap / 2, 1e-9);
   EXPECT_NEAR(roots[2].T, 3 + gap / 2, 1e-9);
@@ -233,7 +234,8 @@ TEST(RayRoots, BlendedSpheresAgreeWithABruteForceScan)
     double d[3] = { 1, 0.3 * u(rng), 0.3 * u(rng) };
     const std::vector<std::vector<double>> f = { Along(Sphere(0.9, 0, 0, 1), o, d),
       Along(Sphere(-0.9, 0, 0, 1), o, d) };
-    const auto F = [&](double t) {
+    const auto F = [&](double t)
+    {
       double p = 1;
       for (const auto& c : f)
         p *= EvaluateUnivariate(c.data(), static_cast<int>(c.size()), t);

@@ -18,26 +18,26 @@
 #include <iostream>
 #include <string>
 
-#define PI_CHECK(cond)                                                                     \
-  do                                                                                       \
-  {                                                                                        \
-    if (!(cond))                                                                           \
-    {                                                                                      \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond << std::endl;   \
-      ++failures;                                                                          \
-    }                                                                                      \
+#define PI_CHECK(cond)                                                                             \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond << std::endl;           \
+      ++failures;                                                                                  \
+    }                                                                                              \
   } while (0)
 
-#define PI_CHECK_NEAR(a, b, tol)                                                           \
-  do                                                                                       \
-  {                                                                                        \
-    const double va_ = (a), vb_ = (b);                                                     \
-    if (!(std::fabs(va_ - vb_) <= (tol)))                                                  \
-    {                                                                                      \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": " #a " = " << va_ << " but " #b " = " \
-                << vb_ << " (tolerance " << (tol) << ")" << std::endl;                     \
-      ++failures;                                                                          \
-    }                                                                                      \
+#define PI_CHECK_NEAR(a, b, tol)                                                                   \
+  do                                                                                               \
+  {                                                                                                \
+    const double va_ = (a), vb_ = (b);                                                             \
+    if (!(std::fabs(va_ - vb_) <= (tol)))                                                          \
+    {                                                                                              \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": " #a " = " << va_ << " but " #b " = " << vb_  \
+                << " (tolerance " << (tol) << ")" << std::endl;                                    \
+      ++failures;                                                                                  \
+    }                                                                                              \
   } while (0)
 
 namespace pitest
@@ -87,8 +87,8 @@ struct Watch
   /// True (and clears) if an error containing `text` was reported.
   bool Error(const std::string& text)
   {
-    const bool ok =
-      this->Observer->GetError() && this->Observer->GetErrorMessage().find(text) != std::string::npos;
+    const bool ok = this->Observer->GetError() &&
+      this->Observer->GetErrorMessage().find(text) != std::string::npos;
     if (!ok)
     {
       std::cerr << "expected an error containing '" << text << "', got: '"

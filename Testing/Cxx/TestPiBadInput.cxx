@@ -71,9 +71,9 @@ using Output = vtkSmartPointer<vtkDataObject>;
 struct Case
 {
   std::string Name;
-  std::string Expected;      // a substring of the error text
+  std::string Expected;        // a substring of the error text
   std::function<Output()> Run; // returns the output to inspect (may be null)
-  double Seconds = 60;       // budget: beyond it the case counts as a hang
+  double Seconds = 60;         // budget: beyond it the case counts as a hang
 };
 
 std::string TempDir()
@@ -145,10 +145,12 @@ Output PrimitiveMesher(const std::function<void(vtkPiPrimitive*)>& set)
 
 Output Expression(const std::string& expression)
 {
-  return PrimitiveMesher([&](vtkPiPrimitive* p) {
-    p->SetTypeToPolynomial();
-    p->SetExpression(expression.c_str());
-  });
+  return PrimitiveMesher(
+    [&](vtkPiPrimitive* p)
+    {
+      p->SetTypeToPolynomial();
+      p->SetExpression(expression.c_str());
+    });
 }
 
 Output ModelReader(const std::string& path)
@@ -175,8 +177,9 @@ std::string Atom(int serial, const char* name, const char* residue, int seq, dou
   double z, const char* element, const char* record = "ATOM  ")
 {
   char line[96];
-  std::snprintf(line, sizeof(line), "%-6s%5d %-4s %3s A%4d    %8.3f%8.3f%8.3f  1.00  0.00          %2s\n",
-    record, serial % 100000, name, residue, seq % 10000, x, y, z, element);
+  std::snprintf(line, sizeof(line),
+    "%-6s%5d %-4s %3s A%4d    %8.3f%8.3f%8.3f  1.00  0.00          %2s\n", record, serial % 100000,
+    name, residue, seq % 10000, x, y, z, element);
   return line;
 }
 
@@ -323,8 +326,8 @@ bool Empty(vtkDataObject* o, std::string& why)
 std::vector<Case> Catalogue()
 {
   std::vector<Case> c;
-  auto add = [&](const std::string& name, const std::string& expected,
-               std::function<Output()> run, double seconds = 60) {
+  auto add = [&](const std::string& name, const std::string& expected, std::function<Output()> run,
+               double seconds = 60) {
     c.push_back({ name, expected, std::move(run), seconds });
   };
 
@@ -334,34 +337,38 @@ std::vector<Case> Catalogue()
   add("model.syntax.trailing_garbage", "invalid JSON",
     [] { return Source(Sphere("") + " trailing"); });
   add("model.syntax.empty_text", "invalid JSON", [] { return Source(""); });
-  add("model.syntax.nan_literal", "invalid JSON", [] { return Source(Sphere(", \"scale\": NaN")); });
-  add("model.syntax.line_column", "line 3, column", [] {
-    return Source("{\n\"pisurf\": 1,\n\"blending\": 0.1 \"primitives\": []}");
-  });
+  add(
+    "model.syntax.nan_literal", "invalid JSON", [] { return Source(Sphere(", \"scale\": NaN")); });
+  add("model.syntax.line_column", "line 3, column",
+    [] { return Source("{\n\"pisurf\": 1,\n\"blending\": 0.1 \"primitives\": []}"); });
   add("model.schema.top_level_array", "the top level must be a JSON object",
     [] { return Source("[1, 2, 3]"); });
   add("model.schema.no_version", "missing key 'pisurf'",
     [] { return Source("{\"blending\": 0.1, \"primitives\": []}"); });
-  add("model.schema.version_2", "unsupported version", [] {
-    return Source("{\"pisurf\": 2, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\"}]}");
-  });
-  add("model.schema.unknown_top_key", "unknown key 'colour'", [] {
-    return Source("{\"pisurf\": 1, \"colour\": 1, \"blending\": 0.1, \"primitives\": []}");
-  });
+  add("model.schema.version_2", "unsupported version",
+    [] {
+      return Source("{\"pisurf\": 2, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\"}]}");
+    });
+  add("model.schema.unknown_top_key", "unknown key 'colour'",
+    [] { return Source("{\"pisurf\": 1, \"colour\": 1, \"blending\": 0.1, \"primitives\": []}"); });
   add("model.schema.no_primitives", "a model needs at least one primitive",
     [] { return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": []}"); });
-  add("model.schema.unknown_type", "unknown primitive type 'blob'", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"blob\"}]}");
-  });
+  add("model.schema.unknown_type", "unknown primitive type 'blob'",
+    [] {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"blob\"}]}");
+    });
   add("model.schema.key_of_other_type", "unknown key 'major_radius'",
     [] { return Source(Sphere(", \"major_radius\": 2")); });
-  add("model.schema.axis_and_rotation", "either 'axis' or 'rotation'", [] {
-    return Source(Sphere(", \"axis\": [0,0,1], \"rotation\": {\"axis\": [0,0,1], \"angle\": 3}"));
-  });
-  add("model.schema.unbounded_without_bounds", "bounds: required", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"plane\", "
-                  "\"normal\": [0, 0, 1]}]}");
-  });
+  add("model.schema.axis_and_rotation", "either 'axis' or 'rotation'",
+    [] {
+      return Source(Sphere(", \"axis\": [0,0,1], \"rotation\": {\"axis\": [0,0,1], \"angle\": 3}"));
+    });
+  add("model.schema.unbounded_without_bounds", "bounds: required",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"plane\", "
+                    "\"normal\": [0, 0, 1]}]}");
+    });
   add("model.type.blending_string", "blending: expected a number, got string",
     [] { return Source("{\"pisurf\": 1, \"blending\": \"0.1\", \"primitives\": []}"); });
   add("model.type.center_two_numbers", "primitives[0].center: expected an array of 3 numbers",
@@ -370,76 +377,96 @@ std::vector<Case> Catalogue()
     [] { return Source(Sphere(", \"negate\": 1")); });
   add("model.type.primitive_not_object", "primitives[0]: expected an object",
     [] { return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [3]}"); });
-  add("model.range.negative_radius", "primitives[0]", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\", "
-                  "\"radius\": -1}]}");
-  });
-  add("model.range.zero_radius", "radius", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\", "
-                  "\"radius\": 0}]}");
-  });
-  add("model.range.odd_exponent", "must be an even integer", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": "
-                  "\"superellipsoid\", \"radii\": [1, 1, 1], \"exponent\": 3}]}");
-  });
-  add("model.range.cone_angle_90", "angle", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [-1,1,-1,1,-1,1], "
-                  "\"primitives\": [{\"type\": \"cone\", \"angle\": 90}]}");
-  });
-  add("model.range.zero_normal", "normal", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [-1,1,-1,1,-1,1], "
-                  "\"primitives\": [{\"type\": \"plane\", \"normal\": [0, 0, 0]}]}");
-  });
+  add("model.range.negative_radius", "primitives[0]",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\", "
+                    "\"radius\": -1}]}");
+    });
+  add("model.range.zero_radius", "radius",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": \"sphere\", "
+                    "\"radius\": 0}]}");
+    });
+  add("model.range.odd_exponent", "must be an even integer",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [{\"type\": "
+                    "\"superellipsoid\", \"radii\": [1, 1, 1], \"exponent\": 3}]}");
+    });
+  add("model.range.cone_angle_90", "angle",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [-1,1,-1,1,-1,1], "
+                    "\"primitives\": [{\"type\": \"cone\", \"angle\": 90}]}");
+    });
+  add("model.range.zero_normal", "normal",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [-1,1,-1,1,-1,1], "
+                    "\"primitives\": [{\"type\": \"plane\", \"normal\": [0, 0, 0]}]}");
+    });
   add("model.range.zero_scale", "scale", [] { return Source(Sphere(", \"scale\": 0")); });
-  add("model.range.inverted_bounds", "bounds: expected [x0, x1, y0, y1, z0, z1]", [] {
-    return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [1, -1, -1, 1, -1, 1], "
-                  "\"primitives\": [{\"type\": \"sphere\", \"radius\": 1}]}");
-  });
-  add("model.range.bad_parameter_name", "invalid parameter name", [] {
-    return Source(Polynomial("x", "{\"x\": 1}"));
-  });
+  add("model.range.inverted_bounds", "bounds: expected [x0, x1, y0, y1, z0, z1]",
+    []
+    {
+      return Source("{\"pisurf\": 1, \"blending\": 0.1, \"bounds\": [1, -1, -1, 1, -1, 1], "
+                    "\"primitives\": [{\"type\": \"sphere\", \"radius\": 1}]}");
+    });
+  add("model.range.bad_parameter_name", "invalid parameter name",
+    [] { return Source(Polynomial("x", "{\"x\": 1}")); });
   add("model.nonfinite.overflowing_number", "numbers must be finite",
     [] { return Source(Sphere(", \"center\": [1e999, 0, 0]")); });
   add("model.nonfinite.infinity_literal", "invalid JSON",
     [] { return Source(Sphere(", \"scale\": -Infinity")); });
-  add("model.size.huge_array", "primitives[0].center: expected an array of 3 numbers", [] {
-    std::string big = "[0";
-    for (int i = 0; i < 1000000; ++i)
+  add("model.size.huge_array", "primitives[0].center: expected an array of 3 numbers",
+    []
     {
-      big += ",0";
-    }
-    return Source(Sphere(", \"center\": " + big + "]"));
-  });
-  add("model.size.deep_nesting", "JSON nested deeper than 32 levels", [] {
-    return Source(std::string(100000, '[') + std::string(100000, ']'));
-  });
-  add("model.size.million_primitives", "more than 100000 primitives", [] {
-    std::string model = "{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [";
-    model.reserve(40u << 20);
-    for (int i = 0; i < 1000000; ++i)
+      std::string big = "[0";
+      for (int i = 0; i < 1000000; ++i)
+      {
+        big += ",0";
+      }
+      return Source(Sphere(", \"center\": " + big + "]"));
+    });
+  add("model.size.deep_nesting", "JSON nested deeper than 32 levels",
+    [] { return Source(std::string(100000, '[') + std::string(100000, ']')); });
+  add(
+    "model.size.million_primitives", "more than 100000 primitives",
+    []
     {
-      model += i ? ",{\"type\":\"sphere\",\"radius\":1}" : "{\"type\":\"sphere\",\"radius\":1}";
-    }
-    return Source(model + "]}");
-  }, 120);
+      std::string model = "{\"pisurf\": 1, \"blending\": 0.1, \"primitives\": [";
+      model.reserve(40u << 20);
+      for (int i = 0; i < 1000000; ++i)
+      {
+        model += i ? ",{\"type\":\"sphere\",\"radius\":1}" : "{\"type\":\"sphere\",\"radius\":1}";
+      }
+      return Source(model + "]}");
+    },
+    120);
   add("model.reader.missing_file", "cannot open model file",
     [] { return ModelReader(TempDir() + "/no_such_file.pisurf"); });
   add("model.reader.directory", "is a directory", [] { return ModelReader(TempDir()); });
   add("model.reader.empty_file", "invalid JSON",
     [] { return ModelReader(WriteFile("empty.pisurf", "")); });
-  add("model.reader.binary_garbage", "invalid JSON", [] {
-    std::string garbage;
-    for (int i = 0; i < 4096; ++i)
+  add("model.reader.binary_garbage", "invalid JSON",
+    []
     {
-      garbage += static_cast<char>((i * 7919 + 13) % 256);
-    }
-    return ModelReader(WriteFile("garbage.pisurf", garbage));
-  });
-  add("model.reader.no_file_name", "No FileName", [] {
-    vtkNew<vtkPiSurfaceModelReader> reader;
-    reader->Update();
-    return Output(reader->GetOutput());
-  });
+      std::string garbage;
+      for (int i = 0; i < 4096; ++i)
+      {
+        garbage += static_cast<char>((i * 7919 + 13) % 256);
+      }
+      return ModelReader(WriteFile("garbage.pisurf", garbage));
+    });
+  add("model.reader.no_file_name", "No FileName",
+    []
+    {
+      vtkNew<vtkPiSurfaceModelReader> reader;
+      reader->Update();
+      return Output(reader->GetOutput());
+    });
 
   // ---- Expressions, in a model and through vtkPiPrimitive.
   const char* const expressionErrors[][2] = {
@@ -470,9 +497,8 @@ std::vector<Case> Catalogue()
     const std::string text = e[0], expected = e[1];
     add("expression.model." + text, expected, [text] { return Source(Polynomial(text)); });
   }
-  add("expression.model.deep_parentheses", "nesting deeper than 200", [] {
-    return Source(Polynomial(std::string(5000, '(') + "x" + std::string(5000, ')')));
-  });
+  add("expression.model.deep_parentheses", "nesting deeper than 200",
+    [] { return Source(Polynomial(std::string(5000, '(') + "x" + std::string(5000, ')'))); });
   add("expression.model.deep_unary_minus", "nesting deeper than 200",
     [] { return Source(Polynomial(std::string(100000, '-') + "x")); });
   add("expression.model.nonfinite_parameter", "numbers must be finite",
@@ -481,91 +507,125 @@ std::vector<Case> Catalogue()
     [] { return Expression("x^2 + y^2 -"); });
   add("expression.primitive.unknown_name", "unknown name 'r'",
     [] { return Expression("x^2 + y^2 + z^2 - r"); });
-  add("expression.primitive.nan_parameter", "must be a finite number", [] {
-    return PrimitiveMesher([](vtkPiPrimitive* p) {
-      p->SetTypeToPolynomial();
-      p->SetParameter("r", NaN);
-      p->SetExpression("x^2 + y^2 + z^2 - r");
+  add("expression.primitive.nan_parameter", "must be a finite number",
+    []
+    {
+      return PrimitiveMesher(
+        [](vtkPiPrimitive* p)
+        {
+          p->SetTypeToPolynomial();
+          p->SetParameter("r", NaN);
+          p->SetExpression("x^2 + y^2 + z^2 - r");
+        });
     });
-  });
 
   // ---- Primitives and the surface through the VTK API.
-  add("primitive.nan_radius", "radius", [] {
-    return PrimitiveMesher([](vtkPiPrimitive* p) { p->SetRadius(NaN); });
-  });
-  add("primitive.negative_minor_radius", "minor", [] {
-    return PrimitiveMesher([](vtkPiPrimitive* p) {
-      p->SetTypeToTorus();
-      p->SetMinorRadius(-0.2);
+  add("primitive.nan_radius", "radius",
+    [] { return PrimitiveMesher([](vtkPiPrimitive* p) { p->SetRadius(NaN); }); });
+  add("primitive.negative_minor_radius", "minor",
+    []
+    {
+      return PrimitiveMesher(
+        [](vtkPiPrimitive* p)
+        {
+          p->SetTypeToTorus();
+          p->SetMinorRadius(-0.2);
+        });
     });
-  });
-  add("primitive.odd_exponent", "exponent", [] {
-    return PrimitiveMesher([](vtkPiPrimitive* p) {
-      p->SetTypeToSuperellipsoid();
-      p->SetExponent(5);
+  add("primitive.odd_exponent", "exponent",
+    []
+    {
+      return PrimitiveMesher(
+        [](vtkPiPrimitive* p)
+        {
+          p->SetTypeToSuperellipsoid();
+          p->SetExponent(5);
+        });
     });
-  });
-  add("surface.nan_blending", "Blending must be a finite number", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) {
-      s->SetOverrideBlending(true);
-      s->SetBlending(NaN);
+  add("surface.nan_blending", "Blending must be a finite number",
+    []
+    {
+      return Source(Sphere(""),
+        [](vtkPiSurfaceSource* s)
+        {
+          s->SetOverrideBlending(true);
+          s->SetBlending(NaN);
+        });
     });
-  });
-  add("surface.no_factors", "has no factors", [] {
-    vtkNew<vtkPiSurface> surface;
-    vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(surface);
-    mesher->Update();
-    return Output(mesher->GetOutput());
-  });
+  add("surface.no_factors", "has no factors",
+    []
+    {
+      vtkNew<vtkPiSurface> surface;
+      vtkNew<vtkPiFlyingEdges> mesher;
+      mesher->SetPiSurface(surface);
+      mesher->Update();
+      return Output(mesher->GetOutput());
+    });
 
   // ---- Mesher settings.
   add("mesher.resolution_zero", "Resolution must be at least 1",
     [] { return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(0); }); });
   add("mesher.resolution_negative", "Resolution must be at least 1",
     [] { return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(-7); }); });
-  add("mesher.resolution_huge", "MiB; the limit is 2048 MiB", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(100000); });
-  });
-  add("mesher.resolution_int_max", "MiB; the limit is 2048 MiB", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(VTK_INT_MAX); });
-  });
-  add("mesher.sample_dimensions_one", "SampleDimensions must be at least 2", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetSampleDimensions(1, 1, 1); });
-  });
-  add("mesher.sample_dimensions_huge", "MiB; the limit is", [] {
-    return Source(
-      Sphere(""), [](vtkPiSurfaceSource* s) { s->SetSampleDimensions(VTK_INT_MAX, VTK_INT_MAX, 2); });
-  });
-  add("mesher.inverted_bounds", "x0 < x1", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(1, -1, -1, 1, -1, 1); });
-  });
-  add("mesher.flat_bounds", "x0 < x1", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-1, 1, 0, 0, -1, 1); });
-  });
-  add("mesher.nan_bounds", "bounds must be finite", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(NaN, 1, -1, 1, -1, 1); });
-  });
-  add("mesher.infinite_bounds", "bounds must be finite", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-Inf, Inf, -1, 1, -1, 1); });
-  });
-  add("mesher.huge_bounds", "bounds must be finite", [] {
-    // Finite, but the side overflows: the spacing would be infinite.
-    return Source(
-      Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-1e308, 1e308, -1, 1, -1, 1); });
-  });
-  add("mesher.ray_cast_method_resolution_zero", "Resolution must be at least 1", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) {
-      s->SetMethod(vtkPiSurfaceSource::RAY_CAST_TRIANGULATION);
-      s->SetResolution(0);
+  add("mesher.resolution_huge", "MiB; the limit is 2048 MiB",
+    [] { return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(100000); }); });
+  add("mesher.resolution_int_max", "MiB; the limit is 2048 MiB",
+    []
+    { return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetResolution(VTK_INT_MAX); }); });
+  add("mesher.sample_dimensions_one", "SampleDimensions must be at least 2",
+    []
+    { return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetSampleDimensions(1, 1, 1); }); });
+  add("mesher.sample_dimensions_huge", "MiB; the limit is",
+    []
+    {
+      return Source(Sphere(""),
+        [](vtkPiSurfaceSource* s) { s->SetSampleDimensions(VTK_INT_MAX, VTK_INT_MAX, 2); });
     });
-  });
-  add("mesher.ray_cast_method_resolution_huge", "MiB; the limit is", [] {
-    return Source(Sphere(""), [](vtkPiSurfaceSource* s) {
-      s->SetMethod(vtkPiSurfaceSource::RAY_CAST_TRIANGULATION);
-      s->SetResolution(20000);
+  add("mesher.inverted_bounds", "x0 < x1",
+    [] {
+      return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(1, -1, -1, 1, -1, 1); });
     });
-  });
+  add("mesher.flat_bounds", "x0 < x1",
+    [] {
+      return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-1, 1, 0, 0, -1, 1); });
+    });
+  add("mesher.nan_bounds", "bounds must be finite",
+    [] {
+      return Source(Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(NaN, 1, -1, 1, -1, 1); });
+    });
+  add("mesher.infinite_bounds", "bounds must be finite",
+    []
+    {
+      return Source(
+        Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-Inf, Inf, -1, 1, -1, 1); });
+    });
+  add("mesher.huge_bounds", "bounds must be finite",
+    []
+    {
+      // Finite, but the side overflows: the spacing would be infinite.
+      return Source(
+        Sphere(""), [](vtkPiSurfaceSource* s) { s->SetBounds(-1e308, 1e308, -1, 1, -1, 1); });
+    });
+  add("mesher.ray_cast_method_resolution_zero", "Resolution must be at least 1",
+    []
+    {
+      return Source(Sphere(""),
+        [](vtkPiSurfaceSource* s)
+        {
+          s->SetMethod(vtkPiSurfaceSource::RAY_CAST_TRIANGULATION);
+          s->SetResolution(0);
+        });
+    });
+  add("mesher.ray_cast_method_resolution_huge", "MiB; the limit is",
+    []
+    {
+      return Source(Sphere(""),
+        [](vtkPiSurfaceSource* s)
+        {
+          s->SetMethod(vtkPiSurfaceSource::RAY_CAST_TRIANGULATION);
+          s->SetResolution(20000);
+        });
+    });
 
   // ---- Ray caster settings.
   add("raycaster.resolution_zero", "Resolution must be at least 1 x 1",
@@ -573,258 +633,352 @@ std::vector<Case> Catalogue()
   add("raycaster.resolution_negative", "Resolution must be at least 1 x 1",
     [] { return RayCaster([](vtkPiRayCaster* r) { r->SetResolution(16, -3); }); });
   add("raycaster.resolution_huge", "the limit is 2048 MiB",
-    [] { return RayCaster([](vtkPiRayCaster* r) { r->SetResolution(VTK_INT_MAX, VTK_INT_MAX); }); });
+    []
+    { return RayCaster([](vtkPiRayCaster* r) { r->SetResolution(VTK_INT_MAX, VTK_INT_MAX); }); });
   add("sampler.no_surface", "No Pi-surface",
     [] { return Sampler([](vtkPiSampleFunction*) {}, false); });
   add("sampler.dimensions_one", "at least 2 points per axis",
     [] { return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(1, 8, 8); }); });
   add("sampler.dimensions_negative", "at least 2 points per axis",
     [] { return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(8, -4, 8); }); });
-  add("sampler.dimensions_huge", "the limit is 2048 MiB", [] {
-    return Sampler([](vtkPiSampleFunction* f) { f->SetSampleDimensions(100000, 100000, 100000); });
-  });
+  add("sampler.dimensions_huge", "the limit is 2048 MiB",
+    []
+    {
+      return Sampler(
+        [](vtkPiSampleFunction* f) { f->SetSampleDimensions(100000, 100000, 100000); });
+    });
   add("sampler.inverted_bounds", "x0 < x1",
     [] { return Sampler([](vtkPiSampleFunction* f) { f->SetModelBounds(1, -1, -1, 1, -1, 1); }); });
-  add("sampler.nan_bounds", "finite", [] {
-    return Sampler([](vtkPiSampleFunction* f) {
-      f->SetModelBounds(std::nan(""), 1, -1, 1, -1, 1);
+  add("sampler.nan_bounds", "finite",
+    []
+    {
+      return Sampler(
+        [](vtkPiSampleFunction* f) { f->SetModelBounds(std::nan(""), 1, -1, 1, -1, 1); });
     });
-  });
   add("raycaster.inverted_bounds", "x0 < x1",
     [] { return RayCaster([](vtkPiRayCaster* r) { r->SetBounds(1, -1, -1, 1, -1, 1); }); });
-  add("raycaster.camera_at_focal_point", "CameraPosition equals CameraFocalPoint", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(1, 2, 3);
-      r->SetCameraFocalPoint(1, 2, 3);
+  add("raycaster.camera_at_focal_point", "CameraPosition equals CameraFocalPoint",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(1, 2, 3);
+          r->SetCameraFocalPoint(1, 2, 3);
+        });
     });
-  });
-  add("raycaster.view_up_parallel", "CameraViewUp is parallel", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(0, 0, 5);
-      r->SetCameraFocalPoint(0, 0, 0);
-      r->SetCameraViewUp(0, 0, 1);
+  add("raycaster.view_up_parallel", "CameraViewUp is parallel",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(0, 0, 5);
+          r->SetCameraFocalPoint(0, 0, 0);
+          r->SetCameraViewUp(0, 0, 1);
+        });
     });
-  });
-  add("raycaster.nan_camera_position", "must be finite", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(NaN, 0, 5);
+  add("raycaster.nan_camera_position", "must be finite",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(NaN, 0, 5);
+        });
     });
-  });
-  add("raycaster.infinite_focal_point", "must be finite", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraFocalPoint(0, Inf, 0);
+  add("raycaster.infinite_focal_point", "must be finite",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraFocalPoint(0, Inf, 0);
+        });
     });
-  });
-  add("raycaster.view_angle_zero", "ViewAngle must be in (0, 180)", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(0, -5, 0);
-      r->SetCameraViewUp(0, 0, 1);
-      r->SetViewAngle(0);
+  add("raycaster.view_angle_zero", "ViewAngle must be in (0, 180)",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(0, -5, 0);
+          r->SetCameraViewUp(0, 0, 1);
+          r->SetViewAngle(0);
+        });
     });
-  });
-  add("raycaster.view_angle_nan", "ViewAngle must be in (0, 180)", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(0, -5, 0);
-      r->SetCameraViewUp(0, 0, 1);
-      r->SetViewAngle(NaN);
+  add("raycaster.view_angle_nan", "ViewAngle must be in (0, 180)",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(0, -5, 0);
+          r->SetCameraViewUp(0, 0, 1);
+          r->SetViewAngle(NaN);
+        });
     });
-  });
-  add("raycaster.parallel_scale_negative", "ParallelScale must be positive", [] {
-    return RayCaster([](vtkPiRayCaster* r) {
-      r->SetViewMode(vtkPiRayCaster::CAMERA);
-      r->SetCameraPosition(0, -5, 0);
-      r->SetCameraViewUp(0, 0, 1);
-      r->SetParallelProjection(true);
-      r->SetParallelScale(-1);
+  add("raycaster.parallel_scale_negative", "ParallelScale must be positive",
+    []
+    {
+      return RayCaster(
+        [](vtkPiRayCaster* r)
+        {
+          r->SetViewMode(vtkPiRayCaster::CAMERA);
+          r->SetCameraPosition(0, -5, 0);
+          r->SetCameraViewUp(0, 0, 1);
+          r->SetParallelProjection(true);
+          r->SetParallelScale(-1);
+        });
     });
-  });
-  add("raycaster.singular_tolerance_nan", "SingularTolerance", [] {
-    return RayCaster([](vtkPiRayCaster* r) { r->SetSingularTolerance(NaN); });
-  });
-  add("raycaster.input_without_model", "carries no PiSurfaceModel", [] {
-    vtkNew<vtkPolyData> input;
-    vtkNew<vtkPiRayCaster> caster;
-    caster->SetInputData(input);
-    caster->Update();
-    return Output(caster->GetOutput());
-  });
-  add("raycaster.input_with_bad_model", "Invalid PiSurfaceModel", [] {
-    vtkNew<vtkPolyData> input;
-    vtkNew<vtkStringArray> json;
-    json->SetName("PiSurfaceModel");
-    json->InsertNextValue("{\"pisurf\": 1, \"blending\": ");
-    input->GetFieldData()->AddArray(json);
-    vtkNew<vtkPiRayCaster> caster;
-    caster->SetInputData(input);
-    caster->Update();
-    return Output(caster->GetOutput());
-  });
+  add("raycaster.singular_tolerance_nan", "SingularTolerance",
+    [] { return RayCaster([](vtkPiRayCaster* r) { r->SetSingularTolerance(NaN); }); });
+  add("raycaster.input_without_model", "carries no PiSurfaceModel",
+    []
+    {
+      vtkNew<vtkPolyData> input;
+      vtkNew<vtkPiRayCaster> caster;
+      caster->SetInputData(input);
+      caster->Update();
+      return Output(caster->GetOutput());
+    });
+  add("raycaster.input_with_bad_model", "Invalid PiSurfaceModel",
+    []
+    {
+      vtkNew<vtkPolyData> input;
+      vtkNew<vtkStringArray> json;
+      json->SetName("PiSurfaceModel");
+      json->InsertNextValue("{\"pisurf\": 1, \"blending\": ");
+      input->GetFieldData()->AddArray(json);
+      vtkNew<vtkPiRayCaster> caster;
+      caster->SetInputData(input);
+      caster->Update();
+      return Output(caster->GetOutput());
+    });
 
   // ---- Image triangulator inputs.
-  add("triangulator.no_pixel_structure", "has no pixel structure", [] {
-    return Triangulator([](vtkPolyData* hits) { hits->GetPointData()->RemoveArray("PixelIndex"); });
-  });
-  add("triangulator.nan_hit", "non-finite position or normal", [] {
-    return Triangulator([](vtkPolyData* hits) { hits->GetPoints()->SetPoint(3, NaN, 0, 0); });
-  });
-  add("triangulator.bad_views", "PiRayViews", [] {
-    return Triangulator([](vtkPolyData* hits) {
-      auto* views = hits->GetFieldData()->GetArray("PiRayViews");
-      if (views)
-      {
-        for (vtkIdType i = 0; i < views->GetNumberOfValues(); ++i)
+  add("triangulator.no_pixel_structure", "has no pixel structure",
+    []
+    {
+      return Triangulator(
+        [](vtkPolyData* hits) { hits->GetPointData()->RemoveArray("PixelIndex"); });
+    });
+  add("triangulator.nan_hit", "non-finite position or normal",
+    []
+    { return Triangulator([](vtkPolyData* hits) { hits->GetPoints()->SetPoint(3, NaN, 0, 0); }); });
+  add("triangulator.bad_views", "PiRayViews",
+    []
+    {
+      return Triangulator(
+        [](vtkPolyData* hits)
         {
-          views->SetVariantValue(i, NaN);
-        }
-      }
+          auto* views = hits->GetFieldData()->GetArray("PiRayViews");
+          if (views)
+          {
+            for (vtkIdType i = 0; i < views->GetNumberOfValues(); ++i)
+            {
+              views->SetVariantValue(i, NaN);
+            }
+          }
+        });
     });
-  });
-  add("triangulator.no_views", "PiRayViews", [] {
-    return Triangulator([](vtkPolyData* hits) { hits->GetFieldData()->RemoveArray("PiRayViews"); });
-  });
-  add("triangulator.pixel_out_of_range", "pixel (", [] {
-    return Triangulator([](vtkPolyData* hits) {
-      auto* pixels = hits->GetPointData()->GetArray("PixelIndex");
-      pixels->SetComponent(0, 0, 1e9);
+  add("triangulator.no_views", "PiRayViews",
+    []
+    {
+      return Triangulator(
+        [](vtkPolyData* hits) { hits->GetFieldData()->RemoveArray("PiRayViews"); });
     });
-  });
-  add("triangulator.bad_model", "Invalid PiSurfaceModel", [] {
-    return Triangulator([](vtkPolyData* hits) {
-      auto* json =
-        vtkStringArray::SafeDownCast(hits->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
-      json->SetValue(0, "{]");
+  add("triangulator.pixel_out_of_range", "pixel (",
+    []
+    {
+      return Triangulator(
+        [](vtkPolyData* hits)
+        {
+          auto* pixels = hits->GetPointData()->GetArray("PixelIndex");
+          pixels->SetComponent(0, 0, 1e9);
+        });
     });
-  });
+  add("triangulator.bad_model", "Invalid PiSurfaceModel",
+    []
+    {
+      return Triangulator(
+        [](vtkPolyData* hits)
+        {
+          auto* json =
+            vtkStringArray::SafeDownCast(hits->GetFieldData()->GetAbstractArray("PiSurfaceModel"));
+          json->SetValue(0, "{]");
+        });
+    });
 
   // ---- Molecule files.
-  add("molecule.missing_file", "Cannot open", [] { return MoleculeReader(TempDir() + "/none.pdb"); });
+  add(
+    "molecule.missing_file", "Cannot open", [] { return MoleculeReader(TempDir() + "/none.pdb"); });
   add("molecule.empty_file", "No atoms", [] { return MoleculeReader(WriteFile("empty.pdb", "")); });
-  add("molecule.binary_garbage", "", [] {
-    std::string garbage;
-    for (int i = 0; i < 65536; ++i)
+  add("molecule.binary_garbage", "",
+    []
     {
-      garbage += static_cast<char>((i * 2654435761u >> 13) % 256);
-    }
-    return MoleculeReader(WriteFile("garbage.pdb", garbage));
-  });
-  add("molecule.binary_garbage_cif", "Cannot read", [] {
-    std::string garbage = "data_x\n";
-    for (int i = 0; i < 4096; ++i)
+      std::string garbage;
+      for (int i = 0; i < 65536; ++i)
+      {
+        garbage += static_cast<char>((i * 2654435761u >> 13) % 256);
+      }
+      return MoleculeReader(WriteFile("garbage.pdb", garbage));
+    });
+  add("molecule.binary_garbage_cif", "Cannot read",
+    []
     {
-      garbage += static_cast<char>((i * 40503u >> 7) % 256);
-    }
-    return MoleculeReader(WriteFile("garbage.cif", garbage));
-  });
-  add("molecule.truncated_record", "", [] {
-    const std::string pdb = SmallPdb();
-    return MoleculeReader(WriteFile("truncated.pdb", pdb.substr(0, 81 + 40)));
-  });
-  add("molecule.wrong_columns", "must hold the x coordinate (wrong columns?)", [] {
-    // Coordinates shifted by 5 columns (a hand-edited file): not numbers where PDB wants them.
-    std::string text;
-    for (int i = 0; i < 3; ++i)
+      std::string garbage = "data_x\n";
+      for (int i = 0; i < 4096; ++i)
+      {
+        garbage += static_cast<char>((i * 40503u >> 7) % 256);
+      }
+      return MoleculeReader(WriteFile("garbage.cif", garbage));
+    });
+  add("molecule.truncated_record", "",
+    []
     {
-      text += "ATOM      1  N   ALA A   1     x0.000y0.000z0.000  1.00  0.00           N\n";
-    }
-    return MoleculeReader(WriteFile("columns.pdb", text));
-  });
-  add("molecule.nan_coordinate", "must hold the x coordinate", [] {
-    return MoleculeReader(WriteFile("nan.pdb", Atom(1, " CA ", "ALA", 1, 0, 0, 0, " C").replace(30, 8, "     nan")));
-  });
-  add("molecule.cif_nan_coordinate", "not a finite number", [] {
-    return MoleculeReader(WriteFile("nan.cif",
-      "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n"
-      "_atom_site.label_atom_id\n_atom_site.label_alt_id\n_atom_site.label_comp_id\n_atom_site.label_asym_id\n"
-      "_atom_site.label_seq_id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n"
-      "_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n_atom_site.auth_seq_id\n"
-      "_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n"
-      "ATOM 1 C CA . ALA A 1 nan 0.0 0.0 1.0 0.0 1 A 1\n"));
-  });
-  add("molecule.model_out_of_range", "Model 5 requested", [] {
-    return MoleculeReader(WriteFile("small.pdb", SmallPdb()), 5);
-  });
-  add("molecule.only_waters", "No atoms left", [] {
-    return MoleculeReader(WriteFile("waters.pdb",
-      Atom(1, " O  ", "HOH", 1, 0, 0, 0, " O", "HETATM") + Atom(2, " O  ", "HOH", 2, 3, 0, 0, " O", "HETATM")));
-  });
-  add("molecule.cif_without_atoms", "No atoms", [] {
-    return MoleculeReader(WriteFile("noatoms.cif", "data_x\n_cell.length_a 10\n"));
-  });
-  add("molecule.no_file_name", "No FileName", [] {
-    vtkNew<vtkPiMoleculeReader> reader;
-    reader->Update();
-    return Output(reader->GetOutput());
-  });
+      const std::string pdb = SmallPdb();
+      return MoleculeReader(WriteFile("truncated.pdb", pdb.substr(0, 81 + 40)));
+    });
+  add("molecule.wrong_columns", "must hold the x coordinate (wrong columns?)",
+    []
+    {
+      // Coordinates shifted by 5 columns (a hand-edited file): not numbers where PDB wants them.
+      std::string text;
+      for (int i = 0; i < 3; ++i)
+      {
+        text += "ATOM      1  N   ALA A   1     x0.000y0.000z0.000  1.00  0.00           N\n";
+      }
+      return MoleculeReader(WriteFile("columns.pdb", text));
+    });
+  add("molecule.nan_coordinate", "must hold the x coordinate",
+    []
+    {
+      return MoleculeReader(
+        WriteFile("nan.pdb", Atom(1, " CA ", "ALA", 1, 0, 0, 0, " C").replace(30, 8, "     nan")));
+    });
+  add("molecule.cif_nan_coordinate", "not a finite number",
+    []
+    {
+      return MoleculeReader(WriteFile("nan.cif",
+        "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n"
+        "_atom_site.label_atom_id\n_atom_site.label_alt_id\n_atom_site.label_comp_id\n_atom_site."
+        "label_asym_id\n"
+        "_atom_site.label_seq_id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n"
+        "_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n_atom_site.auth_seq_id\n"
+        "_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n"
+        "ATOM 1 C CA . ALA A 1 nan 0.0 0.0 1.0 0.0 1 A 1\n"));
+    });
+  add("molecule.model_out_of_range", "Model 5 requested",
+    [] { return MoleculeReader(WriteFile("small.pdb", SmallPdb()), 5); });
+  add("molecule.only_waters", "No atoms left",
+    []
+    {
+      return MoleculeReader(WriteFile("waters.pdb",
+        Atom(1, " O  ", "HOH", 1, 0, 0, 0, " O", "HETATM") +
+          Atom(2, " O  ", "HOH", 2, 3, 0, 0, " O", "HETATM")));
+    });
+  add("molecule.cif_without_atoms", "No atoms",
+    [] { return MoleculeReader(WriteFile("noatoms.cif", "data_x\n_cell.length_a 10\n")); });
+  add("molecule.no_file_name", "No FileName",
+    []
+    {
+      vtkNew<vtkPiMoleculeReader> reader;
+      reader->Update();
+      return Output(reader->GetOutput());
+    });
 
   // ---- Molecular surface settings and molecules.
-  add("molsurface.unknown_elements", "warning:No radius in the chosen table for: X (2 atoms)", [] {
-    // Atomic number 0 (an unknown element) has no radius in any table: carbon's, said.
-    return MoleculeSurface(Molecule({ { 0, 0, 0, 0 }, { 0, 1, 0, 0 } }));
-  });
+  add("molsurface.unknown_elements", "warning:No radius in the chosen table for: X (2 atoms)",
+    []
+    {
+      // Atomic number 0 (an unknown element) has no radius in any table: carbon's, said.
+      return MoleculeSurface(Molecule({ { 0, 0, 0, 0 }, { 0, 1, 0, 0 } }));
+    });
   add("molsurface.empty_molecule", "no atoms", [] { return MoleculeSurface(Molecule({})); });
   add("molsurface.nan_atom", "not a finite number",
-    [] { return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, NaN, 0, 0 } })); });
-  add("molsurface.nan_blending", "Blending must be a finite number >= 0", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetBlending(NaN); });
-  });
-  add("molsurface.negative_blending", "Blending must be a finite number >= 0", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetBlending(-1); });
-  });
-  add("molsurface.zero_influence", "InfluenceRadius must be a finite number >= 0.001", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) {
-      s->SetMode(vtkPiMoleculeSurface::LOCAL);
-      s->SetInfluenceRadius(0);
+    [] {
+      return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, NaN, 0, 0 } }));
     });
-  });
+  add("molsurface.nan_blending", "Blending must be a finite number >= 0",
+    [] {
+      return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetBlending(NaN); });
+    });
+  add("molsurface.negative_blending", "Blending must be a finite number >= 0",
+    [] {
+      return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetBlending(-1); });
+    });
+  add("molsurface.zero_influence", "InfluenceRadius must be a finite number >= 0.001",
+    []
+    {
+      return MoleculeSurface(Molecule(Water),
+        [](vtkPiMoleculeSurface* s)
+        {
+          s->SetMode(vtkPiMoleculeSurface::LOCAL);
+          s->SetInfluenceRadius(0);
+        });
+    });
   // rho = R in doubles: the factor would jump from f to 1 on the sphere.
-  add("molsurface.tiny_influence", "InfluenceRadius must be a finite number >= 0.001", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) {
-      s->SetMode(vtkPiMoleculeSurface::LOCAL);
-      s->SetInfluenceRadius(1e-20);
+  add("molsurface.tiny_influence", "InfluenceRadius must be a finite number >= 0.001",
+    []
+    {
+      return MoleculeSurface(Molecule(Water),
+        [](vtkPiMoleculeSurface* s)
+        {
+          s->SetMode(vtkPiMoleculeSurface::LOCAL);
+          s->SetInfluenceRadius(1e-20);
+        });
     });
-  });
-  add("molsurface.negative_spacing", "Spacing must be 0 (automatic) or a positive", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetSpacing(-1); });
-  });
-  add("molsurface.tiny_spacing", "MiB; the limit is", [] {
-    return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetSpacing(1e-9); });
-  });
-  add("molsurface.far_apart_atoms", "", [] {
-    // Two atoms 10^7 Å apart: the bounds are huge, the grid must be refused or coarse.
-    return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, 1e7, 1e7, 1e7 } }),
-      [](vtkPiMoleculeSurface* s) { s->SetSpacing(0.5); });
-  });
-  add("molsurface.huge_coordinates", "", [] {
-    return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, 1e300, 0, 0 } }));
-  });
-  add("molsurface.polydata_without_numbers", "no point array 'atom_type' or 'AtomicNumber'", [] {
-    vtkNew<vtkPolyData> atoms;
-    vtkNew<vtkPoints> points;
-    points->InsertNextPoint(0, 0, 0);
-    atoms->SetPoints(points);
-    return MoleculeSurface(atoms);
-  });
-  add("molsurface.huge_radius_array", "radius", [] {
-    vtkNew<vtkPolyData> atoms;
-    vtkNew<vtkPoints> points;
-    points->InsertNextPoint(0, 0, 0);
-    points->InsertNextPoint(1, 0, 0);
-    atoms->SetPoints(points);
-    vtkNew<vtkDoubleArray> radius;
-    radius->SetName("radius");
-    radius->InsertNextValue(1.5);
-    radius->InsertNextValue(1e300);
-    atoms->GetPointData()->AddArray(radius);
-    return MoleculeSurface(atoms, [](vtkPiMoleculeSurface* s) {
-      s->SetRadiusTable(vtkPiMoleculeSurface::POINT_ARRAY);
+  add("molsurface.negative_spacing", "Spacing must be 0 (automatic) or a positive",
+    [] {
+      return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetSpacing(-1); });
     });
-  });
+  add("molsurface.tiny_spacing", "MiB; the limit is",
+    [] {
+      return MoleculeSurface(Molecule(Water), [](vtkPiMoleculeSurface* s) { s->SetSpacing(1e-9); });
+    });
+  add("molsurface.far_apart_atoms", "",
+    []
+    {
+      // Two atoms 10^7 Å apart: the bounds are huge, the grid must be refused or coarse.
+      return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, 1e7, 1e7, 1e7 } }),
+        [](vtkPiMoleculeSurface* s) { s->SetSpacing(0.5); });
+    });
+  add("molsurface.huge_coordinates", "",
+    [] {
+      return MoleculeSurface(Molecule({ { 6, 0, 0, 0 }, { 6, 1e300, 0, 0 } }));
+    });
+  add("molsurface.polydata_without_numbers", "no point array 'atom_type' or 'AtomicNumber'",
+    []
+    {
+      vtkNew<vtkPolyData> atoms;
+      vtkNew<vtkPoints> points;
+      points->InsertNextPoint(0, 0, 0);
+      atoms->SetPoints(points);
+      return MoleculeSurface(atoms);
+    });
+  add("molsurface.huge_radius_array", "radius",
+    []
+    {
+      vtkNew<vtkPolyData> atoms;
+      vtkNew<vtkPoints> points;
+      points->InsertNextPoint(0, 0, 0);
+      points->InsertNextPoint(1, 0, 0);
+      atoms->SetPoints(points);
+      vtkNew<vtkDoubleArray> radius;
+      radius->SetName("radius");
+      radius->InsertNextValue(1.5);
+      radius->InsertNextValue(1e300);
+      atoms->GetPointData()->AddArray(radius);
+      return MoleculeSurface(atoms,
+        [](vtkPiMoleculeSurface* s) { s->SetRadiusTable(vtkPiMoleculeSurface::POINT_ARRAY); });
+    });
   return c;
 }
 
@@ -857,8 +1011,8 @@ int MillionAtoms(CaptureWindow* window)
   surface->Update();
   const double total =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << "million atoms: surface after " << total << " s: "
-            << surface->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
+  std::cout << "million atoms: surface after " << total
+            << " s: " << surface->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
   PI_CHECK(window->Text.find("use Mode = Local") != std::string::npos);
   PI_CHECK(surface->GetOutput()->GetNumberOfPoints() == 0);
   vtksys::SystemTools::RemoveFile(path);
@@ -878,23 +1032,25 @@ int TestPiBadInput(int argc, char* argv[])
   std::atomic<double> deadline{ 0 };
   std::string current;
   std::atomic<bool> done{ false };
-  std::thread watchdog([&] {
-    const auto t0 = std::chrono::steady_clock::now();
-    while (!done)
+  std::thread watchdog(
+    [&]
     {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      const double now = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (deadline > 0 && now > deadline)
+      const auto t0 = std::chrono::steady_clock::now();
+      while (!done)
       {
-        std::cerr << "HANG: case '" << current << "' exceeded its time budget" << std::endl;
-        std::_Exit(2);
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        const double now =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (deadline > 0 && now > deadline)
+        {
+          std::cerr << "HANG: case '" << current << "' exceeded its time budget" << std::endl;
+          std::_Exit(2);
+        }
       }
-    }
-  });
+    });
   const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
+  auto elapsed = [&]
+  { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
 
   int failures = 0;
   int count = 0;
@@ -921,9 +1077,8 @@ int TestPiBadInput(int argc, char* argv[])
     {
       why.clear();
     }
-    const bool reported = expected.empty()
-      ? window->Text.find("ERROR") != std::string::npos
-      : window->Text.find(expected) != std::string::npos;
+    const bool reported = expected.empty() ? window->Text.find("ERROR") != std::string::npos
+                                           : window->Text.find(expected) != std::string::npos;
     if (!reported)
     {
       why += (why.empty() ? "" : "; ") + std::string("no message containing '") + expected + "'";
@@ -932,8 +1087,8 @@ int TestPiBadInput(int argc, char* argv[])
     if (!ok)
     {
       ++failures;
-      std::cerr << "FAIL " << c.Name << ": " << why << "\n  captured: "
-                << window->Text.substr(0, 600) << std::endl;
+      std::cerr << "FAIL " << c.Name << ": " << why
+                << "\n  captured: " << window->Text.substr(0, 600) << std::endl;
     }
     else
     {

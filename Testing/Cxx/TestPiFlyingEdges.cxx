@@ -7,13 +7,13 @@
 #include "vtkPiPrimitive.h"
 #include "vtkPiSurface.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFeatureEdges.h"
 #include "vtkFieldData.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkCellData.h"
 #include "vtkPolyDataConnectivityFilter.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkStringArray.h"
@@ -200,7 +200,8 @@ int TestPiFlyingEdges(int, char*[])
     const int sa = many->EvaluateSignAndLog(a, la), sb = many->EvaluateSignAndLog(b, lb);
     if (sa == sb)
     {
-      std::cerr << "no sign change across vertex " << i << " at (" << p[0] << ", " << p[1] << ", " << p[2] << ") n = (" << n[0] << ", " << n[1] << ", " << n[2] << ")" << std::endl;
+      std::cerr << "no sign change across vertex " << i << " at (" << p[0] << ", " << p[1] << ", "
+                << p[2] << ") n = (" << n[0] << ", " << n[1] << ", " << n[2] << ")" << std::endl;
       ++failures;
     }
   }

@@ -96,8 +96,7 @@ int TestPiGalleryImage(int argc, char* argv[])
   const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
     0.5 * (bounds[4] + bounds[5]) };
   camera->SetFocalPoint(centre);
-  camera->SetPosition(
-    centre[0] + direction[0], centre[1] + direction[1], centre[2] + direction[2]);
+  camera->SetPosition(centre[0] + direction[0], centre[1] + direction[1], centre[2] + direction[2]);
   camera->SetViewUp(up);
   renderer->ResetCamera(reader->GetOutput()->GetBounds());
   camera->Zoom(1.15);

@@ -297,7 +297,8 @@ int TestPiImageTriangulator(int, char*[])
         if (std::sqrt(nearest) > pixel)
         {
           ++missing;
-          std::cout << "crease sample (" << q[0] << ", " << q[1] << ", " << q[2] << "): nearest vertex " << std::sqrt(nearest) << "\n";
+          std::cout << "crease sample (" << q[0] << ", " << q[1] << ", " << q[2]
+                    << "): nearest vertex " << std::sqrt(nearest) << "\n";
         }
       }
     }
@@ -357,7 +358,8 @@ int TestPiImageTriangulator(int, char*[])
     surface->GetModelBounds(b);
     const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
       (b[5] - b[4]) * (b[5] - b[4]));
-    auto centroidRms = [&](vtkPolyData* mesh) {
+    auto centroidRms = [&](vtkPolyData* mesh)
+    {
       double sum = 0;
       vtkIdType count = 0, n;
       const vtkIdType* ids;
@@ -382,7 +384,8 @@ int TestPiImageTriangulator(int, char*[])
       }
       return std::sqrt(sum / std::max<vtkIdType>(count, 1));
     };
-    auto sortedPoints = [](vtkPolyData* mesh) {
+    auto sortedPoints = [](vtkPolyData* mesh)
+    {
       std::vector<std::array<double, 3>> p(mesh->GetNumberOfPoints());
       for (vtkIdType k = 0; k < mesh->GetNumberOfPoints(); ++k)
       {
@@ -394,7 +397,8 @@ int TestPiImageTriangulator(int, char*[])
     double previous = 0;
     std::vector<std::array<double, 3>> points;
     std::vector<vtkIdType> once, thrice; // connectivity after 1 and 3 rounds
-    auto connectivity = [](vtkPolyData* mesh) {
+    auto connectivity = [](vtkPolyData* mesh)
+    {
       std::vector<vtkIdType> ids;
       vtkIdType n;
       const vtkIdType* cell;
@@ -454,8 +458,8 @@ int TestPiImageTriangulator(int, char*[])
       std::vector<std::int32_t> narrow(once.begin(), once.end());
       const vtkIdType triangles = static_cast<vtkIdType>(once.size() / 3);
       const vtkIdType n = first->GetNumberOfPoints();
-      const pisurf::EdgeFlipResult a =
-        pisurf::FlipEdgesToCurvature(wide.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
+      const pisurf::EdgeFlipResult a = pisurf::FlipEdgesToCurvature(
+        wide.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
       const pisurf::EdgeFlipResult c = pisurf::FlipEdgesToCurvature(
         narrow.data(), triangles, n, xyz->GetPointer(0), normals->GetPointer(0), 2);
       std::cout << "cup, flips on 64- and 32-bit ids: " << a.Flips << " and " << c.Flips

@@ -207,8 +207,8 @@ int TestPiMeshing(int, char*[])
   massFine->SetInputData(fine->GetOutput());
   massAutomatic->Update();
   massFine->Update();
-  PI_CHECK_NEAR(massAutomatic->GetSurfaceArea(), massFine->GetSurfaceArea(),
-    0.02 * massFine->GetSurfaceArea());
+  PI_CHECK_NEAR(
+    massAutomatic->GetSurfaceArea(), massFine->GetSurfaceArea(), 0.02 * massFine->GetSurfaceArea());
 
   // A bad model in the source: an error naming the key, an empty output.
   vtkNew<vtkPiSurfaceSource> bad;

@@ -5,19 +5,19 @@
 #include "vtkCMLMoleculeReader.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkMath.h"
 #include "vtkFieldData.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkImageData.h"
 #include "vtkMassProperties.h"
+#include "vtkMath.h"
 #include "vtkMolecule.h"
 #include "vtkNew.h"
 #include "vtkPDBReader.h"
+#include "vtkPiImageTriangulator.h"
 #include "vtkPiMoleculeReader.h"
 #include "vtkPiMoleculeSurface.h"
-#include "vtkPiImageTriangulator.h"
-#include "vtkPiSampleFunction.h"
-#include "vtkFlyingEdges3D.h"
-#include "vtkImageData.h"
 #include "vtkPiRayCaster.h"
+#include "vtkPiSampleFunction.h"
 #include "vtkPiSurface.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -29,8 +29,8 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <tuple>
 #include <string>
+#include <tuple>
 
 namespace
 {
@@ -54,7 +54,8 @@ int PaperMolecule(const double atoms[][4], int n)
   vtkNew<vtkMolecule> molecule;
   for (int i = 0; i < n; ++i)
   {
-    molecule->AppendAtom(static_cast<unsigned short>(atoms[i][0]), atoms[i][1], atoms[i][2], atoms[i][3]);
+    molecule->AppendAtom(
+      static_cast<unsigned short>(atoms[i][0]), atoms[i][1], atoms[i][2], atoms[i][3]);
   }
   vtkNew<vtkPiMoleculeSurface> surface;
   surface->SetInputData(molecule);
@@ -92,8 +93,8 @@ int PaperMolecule(const double atoms[][4], int n)
   return failures;
 }
 
-int Mesh(vtkAlgorithm* source, int mode, double spacing, vtkIdType minimumTriangles,
-  int components = -1)
+int Mesh(
+  vtkAlgorithm* source, int mode, double spacing, vtkIdType minimumTriangles, int components = -1)
 {
   int failures = 0;
   vtkNew<vtkPiMoleculeSurface> surface;
@@ -143,12 +144,11 @@ int BadFile(const std::string& path, const std::string& text)
 // blended surface): the molecule path (the field rebuilt from PiMoleculeCenters, Radii
 // and Settings) gives the hits the polynomial path gives from PiSurfaceModel (the same
 // output without PiMoleculeSettings): six views, all hits; each of its hits matched
-// within about two tolerances, with its Tangent flag, and none extra. (2) 1a0q (3301 atoms) in Local
-// mode, which has no polynomial model: every first hit of the -Z view lies on the mesh
-// of the same field (within one grid spacing of its exact vertices), and the Image
-// Based Triangulation of its first-hit six views is closed, with the area of all the
-// mesher's sheets (within -20 % for the sheets thinner than a pixel, +5 %). (3) A
-// malformed PiMoleculeSettings is an error.
+// within about two tolerances, with its Tangent flag, and none extra. (2) 1a0q (3301 atoms) in
+// Local mode, which has no polynomial model: every first hit of the -Z view lies on the mesh of the
+// same field (within one grid spacing of its exact vertices), and the Image Based Triangulation of
+// its first-hit six views is closed, with the area of all the mesher's sheets (within -20 % for the
+// sheets thinner than a pixel, +5 %). (3) A malformed PiMoleculeSettings is an error.
 int RayCastDownstream()
 {
   int failures = 0;
@@ -156,7 +156,8 @@ int RayCastDownstream()
   // nearest first.
   using Pixel = std::tuple<int, int, int>;
   using Hits = std::map<Pixel, std::vector<std::pair<double, int>>>;
-  auto hits = [](vtkPolyData* input, int n) {
+  auto hits = [](vtkPolyData* input, int n)
+  {
     vtkNew<vtkPiRayCaster> caster;
     caster->SetInputData(input);
     caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
@@ -207,15 +208,15 @@ int RayCastDownstream()
       const auto& mine = found != pa.end() ? found->second : none;
       for (const auto& hit : pixel.second)
       {
-        missed += std::none_of(mine.begin(), mine.end(), [&](const std::pair<double, int>& x) {
-          return std::fabs(x.first - hit.first) <= 4e-9 && x.second == hit.second;
-        });
+        missed += std::none_of(mine.begin(), mine.end(),
+          [&](const std::pair<double, int>& x)
+          { return std::fabs(x.first - hit.first) <= 4e-9 && x.second == hit.second; });
       }
       for (const auto& hit : mine)
       {
-        if (std::none_of(pixel.second.begin(), pixel.second.end(), [&](const std::pair<double, int>& x) {
-              return std::fabs(x.first - hit.first) <= 4e-9;
-            }))
+        if (std::none_of(pixel.second.begin(), pixel.second.end(),
+              [&](const std::pair<double, int>& x)
+              { return std::fabs(x.first - hit.first) <= 4e-9; }))
         {
           ++extra;
         }
@@ -285,13 +286,15 @@ int RayCastDownstream()
     sheets->SetSpacing(0.5);
     sheets->OuterEnvelopeOff();
     sheets->Update();
-    const double meshArea = sheets->GetOutput()->GetFieldData()->GetArray("SurfaceArea")->GetComponent(0, 0);
+    const double meshArea =
+      sheets->GetOutput()->GetFieldData()->GetArray("SurfaceArea")->GetComponent(0, 0);
     // Every sheet of F = 0 (the lens-shaped shells where atoms overlap too), as the
     // mesher's with OuterEnvelope off; sheets thinner than a pixel are left out.
     PI_CHECK(area->GetSurfaceArea() > 0.8 * meshArea && area->GetSurfaceArea() < 1.05 * meshArea);
     if (!(area->GetSurfaceArea() > 0.8 * meshArea && area->GetSurfaceArea() < 1.05 * meshArea))
     {
-      std::cerr << "  triangulated area " << area->GetSurfaceArea() << ", mesh " << meshArea << "\n";
+      std::cerr << "  triangulated area " << area->GetSurfaceArea() << ", mesh " << meshArea
+                << "\n";
     }
     PI_CHECK(triangles->GetFieldData()->GetArray("PiMoleculeSettings") != nullptr);
     // Pi Sample Function samples the same field on the mesher's grid (Local mode has no
@@ -301,9 +304,10 @@ int RayCastDownstream()
     int dims[3];
     for (int a = 0; a < 3; ++a)
     {
-      dims[a] = static_cast<int>(std::lround(
-                  (box->GetComponent(4 + 2 * a, 0) - box->GetComponent(3 + 2 * a, 0)) /
-                  sheets->GetLastSpacing())) + 1;
+      dims[a] = static_cast<int>(
+                  std::lround((box->GetComponent(4 + 2 * a, 0) - box->GetComponent(3 + 2 * a, 0)) /
+                    sheets->GetLastSpacing())) +
+        1;
     }
     vtkNew<vtkPiSampleFunction> sample;
     sample->SetInputConnection(sheets->GetOutputPort());
@@ -331,7 +335,8 @@ int RayCastDownstream()
     vtkNew<vtkStaticPointLocator> onContour;
     onContour->SetDataSet(contour->GetOutput());
     onContour->BuildLocator();
-    auto farthest = [&](vtkPolyData* m) {
+    auto farthest = [&](vtkPolyData* m)
+    {
       double worst = 0.0;
       for (vtkIdType i = 0; i < m->GetNumberOfPoints(); ++i)
       {
@@ -387,9 +392,9 @@ int TestPiMolecule(int, char*[])
   failures += RayCastDownstream();
 
   // CML files through VTK's reader.
-  for (const char* name : { "carboxylic_acids/formic_acid", "carboxylic_acids/acetic_acid",
-         "nucleobases/adenine", "nucleobases/cytosine", "nucleobases/guanine",
-         "nucleobases/thymine", "nucleobases/uracil" })
+  for (const char* name :
+    { "carboxylic_acids/formic_acid", "carboxylic_acids/acetic_acid", "nucleobases/adenine",
+      "nucleobases/cytosine", "nucleobases/guanine", "nucleobases/thymine", "nucleobases/uracil" })
   {
     vtkNew<vtkCMLMoleculeReader> cml;
     cml->SetFileName((Chemical + name + ".cml").c_str());
@@ -453,7 +458,8 @@ int TestPiMolecule(int, char*[])
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const size_t cut = text.find("ATOM      2 ");
     std::ofstream(temp + "/truncated.pdb") << text.substr(0, cut + 30);
-    std::ofstream(temp + "/noatoms.cif") << "data_x\nloop_\n_atom_site.id\n_atom_site.Cartn_x\n1 2\n";
+    std::ofstream(temp + "/noatoms.cif")
+      << "data_x\nloop_\n_atom_site.id\n_atom_site.Cartn_x\n1 2\n";
   }
   failures += BadFile(temp + "/missing.pdb", "Cannot open");
   failures += BadFile(temp + "/empty.pdb", "no ATOM/HETATM records");

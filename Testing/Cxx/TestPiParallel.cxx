@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// pisurf::ParallelFor (PiParallel.h): with each backend (Sequential, STDThread with 2 and 4 threads),
-// every index of the range is visited exactly once, in chunks that start on the grain's
+// pisurf::ParallelFor (PiParallel.h): with each backend (Sequential, STDThread with 2 and 4
+// threads), every index of the range is visited exactly once, in chunks that start on the grain's
 // multiples and are at most a grain long (vtkSMPTools' default grain where it is 0);
 // exactly one thread is the single thread of pisurf::SingleThread (the one that reports
 // progress and checks for a cancel), also when the loop runs serially on the calling
 // thread, where ParaView 5.11's vtkSMPTools::GetSingleThread() reads an empty stack and
-// crashed this test; a pisurf::ParallelFor inside a pisurf::ParallelFor (as the mesher's passes nest in ParaView's
-// pipelines) visits its whole range too.
+// crashed this test; a pisurf::ParallelFor inside a pisurf::ParallelFor (as the mesher's passes
+// nest in ParaView's pipelines) visits its whole range too.
 #include "PiParallel.h"
 
 #include "vtkSMPTools.h"
@@ -34,10 +34,10 @@ void Check(bool ok, const std::string& what)
 void Run(const std::string& setup)
 {
   for (const vtkIdType first : { vtkIdType(0), vtkIdType(13) })
-    for (const vtkIdType n : { vtkIdType(0), vtkIdType(1), vtkIdType(7), vtkIdType(1000),
-           vtkIdType(5451) })
-      for (const vtkIdType grain : { vtkIdType(0), vtkIdType(1), vtkIdType(8), vtkIdType(16),
-             vtkIdType(4096) })
+    for (const vtkIdType n :
+      { vtkIdType(0), vtkIdType(1), vtkIdType(7), vtkIdType(1000), vtkIdType(5451) })
+      for (const vtkIdType grain :
+        { vtkIdType(0), vtkIdType(1), vtkIdType(8), vtkIdType(16), vtkIdType(4096) })
       {
         const std::string what = setup + ", first " + std::to_string(first) + ", n " +
           std::to_string(n) + ", grain " + std::to_string(grain);
@@ -49,31 +49,33 @@ void Run(const std::string& setup)
         std::atomic<bool> aligned{ true }, bounded{ true }, empty{ false };
         std::mutex mutex;
         std::set<std::thread::id> threads, single;
-        pisurf::ParallelFor(first, first + n, grain, [&](vtkIdType begin, vtkIdType end) {
-          if (!(begin < end))
+        pisurf::ParallelFor(first, first + n, grain,
+          [&](vtkIdType begin, vtkIdType end)
           {
-            empty = true;
-          }
-          if (grain > 0 && ((begin - first) % grain != 0 || end - begin > grain))
-          {
-            aligned = false;
-          }
-          if (begin < first || end > first + n)
-          {
-            bounded = false;
-            return;
-          }
-          for (vtkIdType i = begin; i < end; ++i)
-          {
-            ++visits[static_cast<size_t>(i - first)];
-          }
-          std::lock_guard<std::mutex> lock(mutex);
-          threads.insert(std::this_thread::get_id());
-          if (pisurf::SingleThread())
-          {
-            single.insert(std::this_thread::get_id());
-          }
-        });
+            if (!(begin < end))
+            {
+              empty = true;
+            }
+            if (grain > 0 && ((begin - first) % grain != 0 || end - begin > grain))
+            {
+              aligned = false;
+            }
+            if (begin < first || end > first + n)
+            {
+              bounded = false;
+              return;
+            }
+            for (vtkIdType i = begin; i < end; ++i)
+            {
+              ++visits[static_cast<size_t>(i - first)];
+            }
+            std::lock_guard<std::mutex> lock(mutex);
+            threads.insert(std::this_thread::get_id());
+            if (pisurf::SingleThread())
+            {
+              single.insert(std::this_thread::get_id());
+            }
+          });
         bool once = true;
         for (const auto& v : visits)
         {
@@ -94,12 +96,14 @@ void Run(const std::string& setup)
 
   // Nested: the inner loops run whole inside the outer one.
   std::atomic<long> sum{ 0 };
-  pisurf::ParallelFor(0, 64, 1, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  pisurf::ParallelFor(0, 64, 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      pisurf::ParallelFor(0, 100, 8, [&](vtkIdType b, vtkIdType e) { sum += e - b; });
-    }
-  });
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        pisurf::ParallelFor(0, 100, 8, [&](vtkIdType b, vtkIdType e) { sum += e - b; });
+      }
+    });
   Check(sum == 6400, setup + ": nested loops visit 64 x 100 indices");
 }
 }

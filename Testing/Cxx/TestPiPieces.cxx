@@ -77,15 +77,13 @@ int TestPiPieces(int, char*[])
           nonEmpty += m.Triangles > 0;
         }
         const std::string what = std::string(c.Model) + " at " + std::to_string(c.Resolution) +
-          (envelope ? ", envelope on, " : ", envelope off, ") + std::to_string(pieces) +
-          " pieces";
+          (envelope ? ", envelope on, " : ", envelope off, ") + std::to_string(pieces) + " pieces";
         if (sum.Triangles != serial.Triangles || sum.Primitives != serial.Primitives ||
           !(std::fabs(sum.Area - serial.Area) <= 1e-9 * serial.Area))
         {
-          std::cerr << what << ": " << sum.Triangles << " triangles (serial "
-                    << serial.Triangles << "), " << sum.Primitives << " primitive triangles ("
-                    << serial.Primitives << "), area " << sum.Area << " (" << serial.Area
-                    << ")\n";
+          std::cerr << what << ": " << sum.Triangles << " triangles (serial " << serial.Triangles
+                    << "), " << sum.Primitives << " primitive triangles (" << serial.Primitives
+                    << "), area " << sum.Area << " (" << serial.Area << ")\n";
           ++failures;
         }
         // Several pieces hold triangles (a slab each), unless the grid has fewer block

@@ -16,7 +16,8 @@ int TestPiPrimitive(int, char*[])
   int failures = 0;
   vtkNew<vtkMinimalStandardRandomSequence> rng;
   rng->SetSeed(11);
-  auto random = [&]() {
+  auto random = [&]()
+  {
     rng->Next();
     return rng->GetRangeValue(-3, 3);
   };

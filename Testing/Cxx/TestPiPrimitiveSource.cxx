@@ -198,7 +198,8 @@ int TestPiPrimitiveSource(int, char*[])
     plane->SetBounds(-1, 1, -2, 2, -3, 3);
     vtkNew<vtkPiSurfaceModelWriter> planeWriter;
     planeWriter->SetInputConnection(plane->GetOutputPort());
-    const std::string planePath = std::string(PISURF_TEMP_DIR) + "/TestPiPrimitiveSource_plane.pisurf";
+    const std::string planePath =
+      std::string(PISURF_TEMP_DIR) + "/TestPiPrimitiveSource_plane.pisurf";
     planeWriter->SetFileName(planePath.c_str());
     PI_CHECK(planeWriter->Write() == 1);
     vtkNew<vtkPiSurfaceModelReader> planeReader;

@@ -159,7 +159,7 @@ int TestPiProgressAbort(int, char*[])
     surface->SetSpacing(0.2);
     // Also cancelled during its mesher's vertex pass (0.725 to 0.95 of its progress).
     failures += Check(mode == vtkPiMoleculeSurface::LOCAL ? "vtkPiMoleculeSurface (Local)"
-                                                           : "vtkPiMoleculeSurface (Global)",
+                                                          : "vtkPiMoleculeSurface (Global)",
       surface, 0.75);
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

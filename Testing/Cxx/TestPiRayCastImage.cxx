@@ -10,8 +10,8 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkTrivialProducer.h"
 #include "vtkTesting.h"
+#include "vtkTrivialProducer.h"
 
 #include <cstdlib>
 #include <iostream>

@@ -63,16 +63,16 @@ long SameHitsWithAndWithoutSkipping(vtkPiSurface* model, int w, int h, const std
     vtkDataArray* singular = Array(out, "Singular");
     for (vtkIdType k = 0; k < out->GetNumberOfPoints(); ++k)
     {
-      hits[skip][Key(static_cast<int>(view->GetTuple1(k)), static_cast<int>(pixel->GetComponent(k, 0)),
-        static_cast<int>(pixel->GetComponent(k, 1)), static_cast<int>(index->GetTuple1(k)))] = {
-        depth->GetTuple1(k), tangent->GetTuple1(k), singular->GetTuple1(k)
-      };
+      hits[skip][Key(static_cast<int>(view->GetTuple1(k)),
+        static_cast<int>(pixel->GetComponent(k, 0)), static_cast<int>(pixel->GetComponent(k, 1)),
+        static_cast<int>(index->GetTuple1(k)))] = { depth->GetTuple1(k), tangent->GetTuple1(k),
+        singular->GetTuple1(k) };
     }
   }
   double b[6];
   model->GetModelBounds(b);
-  const double size =
-    std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  const double size = std::sqrt(
+    (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   long differences = 0;
   for (const auto& hit : hits[0])
   {
@@ -82,9 +82,10 @@ long SameHitsWithAndWithoutSkipping(vtkPiSurface* model, int w, int h, const std
     {
       if (differences < 5)
       {
-        std::cerr << name << ": view " << std::get<0>(hit.first) << " pixel (" << std::get<1>(hit.first)
-                  << ", " << std::get<2>(hit.first) << ") hit " << std::get<3>(hit.first) << ": depth "
-                  << hit.second[0] << " tangent " << hit.second[1] << " singular " << hit.second[2];
+        std::cerr << name << ": view " << std::get<0>(hit.first) << " pixel ("
+                  << std::get<1>(hit.first) << ", " << std::get<2>(hit.first) << ") hit "
+                  << std::get<3>(hit.first) << ": depth " << hit.second[0] << " tangent "
+                  << hit.second[1] << " singular " << hit.second[2];
         if (other != hits[1].end())
         {
           std::cerr << "; with skipping " << other->second[0] << " tangent " << other->second[1]
@@ -203,10 +204,11 @@ int TestPiRayCaster(int, char*[])
     const double cube[6] = { -1, 1, -1, 1, -1, 1 };
     thin->SetModelBounds(cube);
     const long found = SameHitsWithAndWithoutSkipping(thin, 150, 130, "thin features");
-    std::cout << "thin features, six views, all hits: " << found << " hits with and without skipping\n";
+    std::cout << "thin features, six views, all hits: " << found
+              << " hits with and without skipping\n";
     PI_CHECK(found > 1000);
-    PI_CHECK(SameHitsWithAndWithoutSkipping(thin, 150, 130, "thin features, first hits", nullptr,
-               false) > 500);
+    PI_CHECK(SameHitsWithAndWithoutSkipping(
+               thin, 150, 130, "thin features, first hits", nullptr, false) > 500);
     // Camera views (perspective and parallel, oblique), from outside the bounds and from
     // inside them (the frustum's near end at the eye).
     for (const bool parallel : { false, true })
@@ -216,7 +218,8 @@ int TestPiRayCaster(int, char*[])
         const std::string name = std::string("thin features, ") +
           (parallel ? "parallel" : "perspective") + " camera" + (inside ? " inside" : "");
         const long camera = SameHitsWithAndWithoutSkipping(thin, 121, 97, name,
-          [&](vtkPiRayCaster* c) {
+          [&](vtkPiRayCaster* c)
+          {
             c->SetViewMode(vtkPiRayCaster::CAMERA);
             c->SetCameraPosition(inside ? 0.1 : 2.5, inside ? -0.2 : -3.0, inside ? 0.05 : 1.7);
             c->SetCameraFocalPoint(0.3, 0.2, -0.1);
@@ -307,7 +310,8 @@ int TestPiRayCaster(int, char*[])
     six->GetPoint(k, p);
     twoSpheres->EvaluateGradient(p, g);
     worst = std::max(worst,
-      std::fabs(twoSpheres->EvaluateFunction(p)) / std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+      std::fabs(twoSpheres->EvaluateFunction(p)) /
+        std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
   }
   PI_CHECK(six->GetNumberOfPoints() > 1000);
   PI_CHECK(worst <= 1e-9 * 5);
@@ -336,8 +340,8 @@ int TestPiRayCaster(int, char*[])
     vtkPolyData* out = views->GetOutput();
     double b[6];
     model->GetModelBounds(b);
-    const double size =
-      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+    const double size = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+      (b[5] - b[4]) * (b[5] - b[4]));
     vtkDataArray* flags = Array(out, "Singular");
     double worstHit = 0;
     for (vtkIdType k = 0; flags && k < out->GetNumberOfPoints(); ++k)
@@ -361,12 +365,15 @@ int TestPiRayCaster(int, char*[])
     // Empty-space skipping finds the same roots (an odd image size leaves partial tiles),
     // in the six axis views and in an oblique perspective camera.
     PI_CHECK(SameHitsWithAndWithoutSkipping(model, 75, 61, file) > 100);
-    PI_CHECK(SameHitsWithAndWithoutSkipping(model, 75, 61, file + ", first hits", nullptr, false) > 100);
+    PI_CHECK(
+      SameHitsWithAndWithoutSkipping(model, 75, 61, file + ", first hits", nullptr, false) > 100);
     const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
     for (const bool allHits : { true, false })
     {
-      PI_CHECK(SameHitsWithAndWithoutSkipping(model, 67, 53, file + ", camera",
-                 [&](vtkPiRayCaster* c) {
+      PI_CHECK(SameHitsWithAndWithoutSkipping(
+                 model, 67, 53, file + ", camera",
+                 [&](vtkPiRayCaster* c)
+                 {
                    c->SetViewMode(vtkPiRayCaster::CAMERA);
                    c->SetCameraPosition(
                      centre[0] + 0.9 * size, centre[1] - 1.1 * size, centre[2] + 0.7 * size);
@@ -425,7 +432,8 @@ int TestPiRayCaster(int, char*[])
         double ends[2][3];
         for (int z = 0; z < 2; ++z)
         {
-          renderer->SetDisplayPoint(pixel->GetComponent(k, 0) + 0.5, pixel->GetComponent(k, 1) + 0.5, z);
+          renderer->SetDisplayPoint(
+            pixel->GetComponent(k, 0) + 0.5, pixel->GetComponent(k, 1) + 0.5, z);
           renderer->DisplayToWorld();
           double world[4];
           renderer->GetWorldPoint(world);
@@ -445,9 +453,11 @@ int TestPiRayCaster(int, char*[])
         const double cx = v[1] * u[2] - v[2] * u[1], cy = v[2] * u[0] - v[0] * u[2],
                      cz = v[0] * u[1] - v[1] * u[0];
         worst = std::max(worst,
-          std::sqrt(cx * cx + cy * cy + cz * cz) / std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+          std::sqrt(cx * cx + cy * cy + cz * cz) /
+            std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
       }
-      std::cout << (parallel ? "parallel" : "perspective") << " camera: " << out->GetNumberOfPoints()
+      std::cout << (parallel ? "parallel" : "perspective")
+                << " camera: " << out->GetNumberOfPoints()
                 << " hits, largest distance to VTK's pixel ray " << worst << "\n";
       PI_CHECK(out->GetNumberOfPoints() > 1000);
       PI_CHECK(worst < 1e-6);

@@ -44,7 +44,8 @@ int TestPiSurface(int, char*[])
   int failures = 0;
   vtkNew<vtkMinimalStandardRandomSequence> rng;
   rng->SetSeed(7);
-  auto random = [&](double lo, double hi) {
+  auto random = [&](double lo, double hi)
+  {
     rng->Next();
     return rng->GetRangeValue(lo, hi);
   };
@@ -176,8 +177,8 @@ int TestPiSurface(int, char*[])
   generic->AddFactor(superquadric);
   generic->AddFactor(left);
   double p[3] = { 0.3, 0.2, 0.1 };
-  PI_CHECK_NEAR(generic->EvaluateFunction(p),
-    superquadric->FunctionValue(p) * left->FunctionValue(p), 1e-12);
+  PI_CHECK_NEAR(
+    generic->EvaluateFunction(p), superquadric->FunctionValue(p) * left->FunctionValue(p), 1e-12);
   PI_CHECK(generic->GetModelJSON().empty());
   PI_CHECK(genericWatch.Error("not a polynomial"));
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Thread determinism: every threaded algorithm (the mesher, the ray caster, the image
-// triangulator, the molecular surface, the grid sampler) gives bit-identical output with vtkSMPTools'
-// Sequential and STDThread backends (4 threads on any machine, so work is really split).
-// Points, cells, every point-data array and numeric field data are compared exactly.
+// triangulator, the molecular surface, the grid sampler) gives bit-identical output with
+// vtkSMPTools' Sequential and STDThread backends (4 threads on any machine, so work is really
+// split). Points, cells, every point-data array and numeric field data are compared exactly.
 #include "PiTestUtilities.h"
 
 #include "vtkAbstractArray.h"
@@ -104,8 +104,8 @@ bool SamePolyData(vtkPolyData* a, vtkPolyData* b, const std::string& what)
     a->GetNumberOfCells() != b->GetNumberOfCells())
   {
     std::cerr << what << ": " << a->GetNumberOfPoints() << " vs " << b->GetNumberOfPoints()
-              << " points, " << a->GetNumberOfCells() << " vs " << b->GetNumberOfCells()
-              << " cells" << std::endl;
+              << " points, " << a->GetNumberOfCells() << " vs " << b->GetNumberOfCells() << " cells"
+              << std::endl;
     return false;
   }
   bool same = a->GetNumberOfPoints() == 0 ||
@@ -114,8 +114,9 @@ bool SamePolyData(vtkPolyData* a, vtkPolyData* b, const std::string& what)
   vtkCellArray* cb[2] = { b->GetPolys(), b->GetVerts() };
   for (int k = 0; k < 2; ++k)
   {
-    same = same && SameArray(ca[k]->GetConnectivityArray(), cb[k]->GetConnectivityArray(),
-                     what + ".connectivity");
+    same = same &&
+      SameArray(
+        ca[k]->GetConnectivityArray(), cb[k]->GetConnectivityArray(), what + ".connectivity");
     same = same && SameArray(ca[k]->GetOffsetsArray(), cb[k]->GetOffsetsArray(), what + ".offsets");
   }
   same = same && SameFieldData(a->GetPointData(), b->GetPointData(), what + ".pointdata");
@@ -141,16 +142,14 @@ int Compare(const std::string& what, const Run& run)
     }
     PI_CHECK(image->GetNumberOfPoints() > 100 && other && std::equal(e, e + 6, f));
     PI_CHECK(other && SameFieldData(image->GetPointData(), other->GetPointData(), what));
-    std::cout << what << ": " << image->GetNumberOfPoints() << " grid values compared"
-              << std::endl;
+    std::cout << what << ": " << image->GetNumberOfPoints() << " grid values compared" << std::endl;
     return failures;
   }
   auto* a = vtkPolyData::SafeDownCast(sequential);
   auto* b = vtkPolyData::SafeDownCast(threaded);
   PI_CHECK(a && a->GetNumberOfPoints() > 100);
   PI_CHECK(SamePolyData(a, b, what));
-  std::cout << what << ": " << (a ? a->GetNumberOfPoints() : 0) << " points compared"
-            << std::endl;
+  std::cout << what << ": " << (a ? a->GetNumberOfPoints() : 0) << " points compared" << std::endl;
   return failures;
 }
 
@@ -162,92 +161,108 @@ int TestPiThreads(int, char*[])
   const std::string original = vtkSMPTools::GetBackend();
 
   // The mesher: the cup (polynomial factors, octant classification, envelope flood).
-  failures += Compare("mesher cup", [] {
-    vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
-    mesher->SetResolution(96);
-    mesher->SetComputeGradientMagnitude(true);
-    mesher->Update();
-    return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
-  });
+  failures += Compare("mesher cup",
+    []
+    {
+      vtkNew<vtkPiFlyingEdges> mesher;
+      mesher->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
+      mesher->SetResolution(96);
+      mesher->SetComputeGradientMagnitude(true);
+      mesher->Update();
+      return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
+    });
   // Formic acid at r = 1: the envelope flood (in parallel rounds) removes the two
   // lens-shaped interior shells.
-  failures += Compare("mesher formic acid envelope", [] {
-    vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(pitest::LoadModel("formic_acid.pisurf"));
-    mesher->SetResolution(96);
-    mesher->Update();
-    return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
-  });
+  failures += Compare("mesher formic acid envelope",
+    []
+    {
+      vtkNew<vtkPiFlyingEdges> mesher;
+      mesher->SetPiSurface(pitest::LoadModel("formic_acid.pisurf"));
+      mesher->SetResolution(96);
+      mesher->Update();
+      return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
+    });
   // All sheets (no envelope) of the eggplant.
-  failures += Compare("mesher eggplant all sheets", [] {
-    vtkNew<vtkPiFlyingEdges> mesher;
-    mesher->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
-    mesher->SetResolution(80);
-    mesher->SetOuterEnvelope(false);
-    mesher->Update();
-    return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
-  });
+  failures += Compare("mesher eggplant all sheets",
+    []
+    {
+      vtkNew<vtkPiFlyingEdges> mesher;
+      mesher->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
+      mesher->SetResolution(80);
+      mesher->SetOuterEnvelope(false);
+      mesher->Update();
+      return vtkSmartPointer<vtkDataObject>(mesher->GetOutput());
+    });
   // The ray caster: six axis views with all hits (the hits, their arrays, the views).
-  failures += Compare("ray caster table", [] {
-    vtkNew<vtkPiRayCaster> caster;
-    caster->SetPiSurface(pitest::LoadModel("table.pisurf"));
-    caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
-    caster->SetAllHits(true);
-    caster->SetResolution(96, 80);
-    caster->Update();
-    return vtkSmartPointer<vtkDataObject>(caster->GetOutput());
-  });
+  failures += Compare("ray caster table",
+    []
+    {
+      vtkNew<vtkPiRayCaster> caster;
+      caster->SetPiSurface(pitest::LoadModel("table.pisurf"));
+      caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
+      caster->SetAllHits(true);
+      caster->SetResolution(96, 80);
+      caster->Update();
+      return vtkSmartPointer<vtkDataObject>(caster->GetOutput());
+    });
   // A perspective camera.
-  failures += Compare("ray caster camera", [] {
-    vtkNew<vtkPiRayCaster> caster;
-    caster->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
-    caster->SetViewMode(vtkPiRayCaster::CAMERA);
-    caster->SetCameraPosition(0.6, -9, 1.5);
-    caster->SetCameraFocalPoint(0.6, 0, -1.15);
-    caster->SetCameraViewUp(0, 0, 1);
-    caster->SetResolution(120, 90);
-    caster->Update();
-    return vtkSmartPointer<vtkDataObject>(caster->GetOutput());
-  });
+  failures += Compare("ray caster camera",
+    []
+    {
+      vtkNew<vtkPiRayCaster> caster;
+      caster->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
+      caster->SetViewMode(vtkPiRayCaster::CAMERA);
+      caster->SetCameraPosition(0.6, -9, 1.5);
+      caster->SetCameraFocalPoint(0.6, 0, -1.15);
+      caster->SetCameraViewUp(0, 0, 1);
+      caster->SetResolution(120, 90);
+      caster->Update();
+      return vtkSmartPointer<vtkDataObject>(caster->GetOutput());
+    });
   // The image triangulator in both merge modes.
   for (int mode : { vtkPiImageTriangulator::RAY_LATTICE, vtkPiImageTriangulator::BEST_VIEW })
   {
-    failures += Compare(std::string("triangulator mode ") + std::to_string(mode), [mode] {
-      vtkNew<vtkPiRayCaster> caster;
-      caster->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
-      caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
-      caster->SetResolution(64, 64);
-      vtkNew<vtkPiImageTriangulator> triangulator;
-      triangulator->SetInputConnection(caster->GetOutputPort());
-      triangulator->SetMergeMode(mode);
-      triangulator->Update();
-      return vtkSmartPointer<vtkDataObject>(triangulator->GetOutput());
-    });
+    failures += Compare(std::string("triangulator mode ") + std::to_string(mode),
+      [mode]
+      {
+        vtkNew<vtkPiRayCaster> caster;
+        caster->SetPiSurface(pitest::LoadModel("eggplant_r0.25.pisurf"));
+        caster->SetViewMode(vtkPiRayCaster::SIX_AXIS_VIEWS);
+        caster->SetResolution(64, 64);
+        vtkNew<vtkPiImageTriangulator> triangulator;
+        triangulator->SetInputConnection(caster->GetOutputPort());
+        triangulator->SetMergeMode(mode);
+        triangulator->Update();
+        return vtkSmartPointer<vtkDataObject>(triangulator->GetOutput());
+      });
   }
   // The molecular surface of a protein in both modes (far-field cells built lazily by
   // whichever thread comes first).
   for (int mode : { vtkPiMoleculeSurface::GLOBAL, vtkPiMoleculeSurface::LOCAL })
   {
-    failures += Compare(std::string("molecule 1ubq mode ") + std::to_string(mode), [mode] {
-      vtkNew<vtkPiMoleculeReader> reader;
-      reader->SetFileName("/usr/share/freesasa/test-data/1ubq.pdb");
-      vtkNew<vtkPiMoleculeSurface> surface;
-      surface->SetInputConnection(reader->GetOutputPort());
-      surface->SetMode(mode);
-      surface->SetSpacing(0.6);
-      surface->Update();
-      return vtkSmartPointer<vtkDataObject>(surface->GetOutput());
-    });
+    failures += Compare(std::string("molecule 1ubq mode ") + std::to_string(mode),
+      [mode]
+      {
+        vtkNew<vtkPiMoleculeReader> reader;
+        reader->SetFileName("/usr/share/freesasa/test-data/1ubq.pdb");
+        vtkNew<vtkPiMoleculeSurface> surface;
+        surface->SetInputConnection(reader->GetOutputPort());
+        surface->SetMode(mode);
+        surface->SetSpacing(0.6);
+        surface->Update();
+        return vtkSmartPointer<vtkDataObject>(surface->GetOutput());
+      });
   }
   // The grid sampler: rows split between threads.
-  failures += Compare("sampler cup", [] {
-    vtkNew<vtkPiSampleFunction> sampler;
-    sampler->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
-    sampler->SetSampleDimensions(70, 50, 40);
-    sampler->Update();
-    return vtkSmartPointer<vtkDataObject>(sampler->GetOutput());
-  });
+  failures += Compare("sampler cup",
+    []
+    {
+      vtkNew<vtkPiSampleFunction> sampler;
+      sampler->SetPiSurface(pitest::LoadModel("cup_a1.0.pisurf"));
+      sampler->SetSampleDimensions(70, 50, 40);
+      sampler->Update();
+      return vtkSmartPointer<vtkDataObject>(sampler->GetOutput());
+    });
   vtkSMPTools::SetBackend(original.c_str());
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -71,8 +71,8 @@ int TestPiTriangulationImage(int argc, char* argv[])
     0.5 * (bounds[4] + bounds[5]) };
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetFocalPoint(centre);
-  camera->SetPosition(centre[0] - std::atof(argv[2]), centre[1] - std::atof(argv[3]),
-    centre[2] - std::atof(argv[4]));
+  camera->SetPosition(
+    centre[0] - std::atof(argv[2]), centre[1] - std::atof(argv[3]), centre[2] - std::atof(argv[4]));
   camera->SetViewUp(std::atof(argv[5]), std::atof(argv[6]), std::atof(argv[7]));
   renderer->ResetCamera(bounds);
   camera->Zoom(1.15);

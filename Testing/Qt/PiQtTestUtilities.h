@@ -18,13 +18,13 @@
 #include "pqRenderView.h"
 #include "pqServer.h"
 #include "pqServerResource.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPluginManager.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMProxyManager.h"
-#include "vtkObjectFactory.h"
-#include "vtkOutputWindow.h"
 
 #include <QApplication>
 #include <QCoreApplication>
@@ -40,14 +40,14 @@ namespace
 {
 int Failures = 0;
 
-#define CHECK(condition, message)                                                              \
-  do                                                                                           \
-  {                                                                                            \
-    if (!(condition))                                                                          \
-    {                                                                                          \
-      std::cerr << "FAILED line " << __LINE__ << ": " << message << "\n";                      \
-      ++Failures;                                                                              \
-    }                                                                                          \
+#define CHECK(condition, message)                                                                  \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(condition))                                                                              \
+    {                                                                                              \
+      std::cerr << "FAILED line " << __LINE__ << ": " << message << "\n";                          \
+      ++Failures;                                                                                  \
+    }                                                                                              \
   } while (false)
 
 // The Qt application and ParaView's application core (Core: pqApplicationCore or a

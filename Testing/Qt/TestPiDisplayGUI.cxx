@@ -10,12 +10,12 @@
 #include "pqApplicationCore.h"
 #include "pqDataRepresentation.h"
 #include "pqObjectBuilder.h"
+#include "pqPiParaViewCompat.h"
 #include "pqPipelineSource.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
 #include "pqServerResource.h"
 #include "pqView.h"
-#include "pqPiParaViewCompat.h"
 #include "vtkDataObject.h"
 #include "vtkNew.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
@@ -24,7 +24,6 @@
 #include "vtkSMProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
-
 
 #include <cstdlib>
 #include <iostream>
@@ -50,8 +49,8 @@ bool TranslucentGrey(vtkSMProxy* representation)
   double colour[3];
   vtkSMPropertyHelper(representation, "DiffuseColor").Get(colour, 3);
   return Opacity(representation) < 1 && ColorArray(representation).empty() &&
-    !pqPiCompat::GetUsingScalarColoring(representation) &&
-    colour[0] == colour[1] && colour[1] == colour[2] && colour[0] > 0.3 && colour[0] < 0.9;
+    !pqPiCompat::GetUsingScalarColoring(representation) && colour[0] == colour[1] &&
+    colour[1] == colour[2] && colour[0] > 0.3 && colour[0] < 0.9;
 }
 }
 
@@ -75,9 +74,8 @@ int main(int argc, char* argv[])
   pqView* view = builder->createView("RenderView", server);
   auto* viewProxy = vtkSMViewProxy::SafeDownCast(view->getProxy());
   vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
-  auto show = [&](pqPipelineSource* source, int port) {
-    return controller->Show(vtkSMSourceProxy::SafeDownCast(source->getProxy()), port, viewProxy);
-  };
+  auto show = [&](pqPipelineSource* source, int port)
+  { return controller->Show(vtkSMSourceProxy::SafeDownCast(source->getProxy()), port, viewProxy); };
 
   // A Pi Surface: the surface translucent grey, the primitives coloured by Factor.
   pqPipelineSource* surface = builder->createSource("sources", "PiSurface", server);
@@ -89,10 +87,9 @@ int main(int argc, char* argv[])
     "the Pi Surface is translucent grey: opacity " << Opacity(surfaceShown) << ", colour array '"
                                                    << ColorArray(surfaceShown) << "'");
   CHECK(primitivesShown && ColorArray(primitivesShown) == "Factor" &&
-      pqPiCompat::GetUsingScalarColoring(primitivesShown) &&
-      Opacity(primitivesShown) == 1,
+      pqPiCompat::GetUsingScalarColoring(primitivesShown) && Opacity(primitivesShown) == 1,
     "the Primitives port is opaque and coloured by Factor, not '" << ColorArray(primitivesShown)
-                                                                   << "'");
+                                                                  << "'");
 
   // Pi Primitive sources stay opaque; their Pi Product is translucent grey.
   pqPipelineSource* a = builder->createSource("sources", "PiPrimitive", server);

@@ -12,8 +12,8 @@
 // torus (handle), the "Show 3D widget" checkbox, the hidden panel, a change of the
 // property from outside, a destroyed view, another view and a deleted editor all do what
 // the editor's documentation says.
-#include "PiQtTestUtilities.h"
 #include "PiModel.h"
+#include "PiQtTestUtilities.h"
 
 #include "pqApplicationCore.h"
 #include "pqObjectBuilder.h"
@@ -129,7 +129,8 @@ int main(int argc, char* argv[])
   view->resetCamera();
   view->forceRender();
   QPointer<pqRenderView> liveView = view;
-  auto apply = [&]() {
+  auto apply = [&]()
+  {
     panel->apply();
     proxy->UpdateVTKObjects();
     if (liveView)
@@ -160,8 +161,8 @@ int main(int argc, char* argv[])
   double center[3];
   double radius = 0;
   SpherePlacement(sphere, center, radius);
-  CHECK(Near3(center, 0.9, 0, 0) && Near(radius, 1), "the widget is row 0's sphere: centre "
-      << Str3(center) << ", radius " << radius);
+  CHECK(Near3(center, 0.9, 0, 0) && Near(radius, 1),
+    "the widget is row 0's sphere: centre " << Str3(center) << ", radius " << radius);
 
   // The widget moves (its proxy set, then the interaction events of its VTK widget, as a
   // drag fires them): the row's fields follow at once, the Model on Apply.
@@ -185,8 +186,8 @@ int main(int argc, char* argv[])
       Near3(model.Primitives[0].Center, 0.5, 0.25, -0.125) &&
       Near(model.Primitives[0].Radius, 0.75) && Near3(model.Primitives[1].Center, -0.9, 0, 0),
     "the Model has the moved sphere: " << ModelText(proxy));
-  CHECK(ModelText(proxy).find("\"radius\": 0.75") != std::string::npos,
-    "the JSON says radius 0.75");
+  CHECK(
+    ModelText(proxy).find("\"radius\": 0.75") != std::string::npos, "the JSON says radius 0.75");
   CHECK(FindWidget(viewProxy, "SphereWidgetRepresentation") == sphere && Shown(sphere),
     "the same widget stays after Apply");
 
@@ -356,8 +357,7 @@ int main(int argc, char* argv[])
   CHECK(handle && Shown(handle), "a shown panel shows it again");
 
   // A change of the property from outside (Python, undo, a state file) moves the widget.
-  vtkSMPropertyHelper(proxy, "Model")
-    .Set(R"({"pisurf": 1, "blending": 0.1,
+  vtkSMPropertyHelper(proxy, "Model").Set(R"({"pisurf": 1, "blending": 0.1,
             "primitives": [{"type": "sphere", "center": [2, 0, 0], "radius": 0.5}]})");
   proxy->UpdateVTKObjects();
   QCoreApplication::processEvents();

@@ -13,13 +13,13 @@
 #include "pqActiveObjects.h"
 #include "pqApplyBehavior.h"
 #include "pqDataRepresentation.h"
-#include "pqPVApplicationCore.h"
 #include "pqInterfaceTracker.h"
+#include "pqPVApplicationCore.h"
+#include "pqPiParaViewCompat.h"
 #include "pqPipelineSource.h"
 #include "pqPropertiesPanel.h"
 #include "pqPropertyWidget.h"
 #include "pqStandardPropertyWidgetInterface.h"
-#include "pqPiParaViewCompat.h"
 #include "vtkCamera.h"
 #include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
@@ -157,7 +157,8 @@ int main(int argc, char* argv[])
 
   pqRenderView* view = nullptr;
   // A fresh view, as a new ParaView session has.
-  auto newView = [&]() {
+  auto newView = [&]()
+  {
     builder->destroySources(server);
     if (view)
     {
@@ -170,7 +171,8 @@ int main(int argc, char* argv[])
     QCoreApplication::processEvents();
   };
   // What the user's Apply does for a new source or filter.
-  auto apply = [&](pqPipelineSource* source) {
+  auto apply = [&](pqPipelineSource* source)
+  {
     output->Text.clear();
     pqActiveObjects::instance().setActiveSource(source);
     QCoreApplication::processEvents();
@@ -178,9 +180,8 @@ int main(int argc, char* argv[])
     QCoreApplication::processEvents();
     view->forceRender();
   };
-  auto bounds = [](pqPipelineSource* source, int port, double b[6]) {
-    vtkSMSourceProxy::SafeDownCast(source->getProxy())->GetDataInformation(port)->GetBounds(b);
-  };
+  auto bounds = [](pqPipelineSource* source, int port, double b[6])
+  { vtkSMSourceProxy::SafeDownCast(source->getProxy())->GetDataInformation(port)->GetBounds(b); };
   // Nothing reached the output window since the last apply.
   auto expectQuiet = [&](const char* what) {
     CHECK(!Problems(output->Text), what << ": nothing in the output window:\n" << output->Text);
@@ -262,7 +263,8 @@ int main(int argc, char* argv[])
   // and the last valid surface stays.
   {
     auto* placement = panel->findChild<pqPropertyWidget*>("pi_primitive_placement");
-    auto* sphere = placement ? placement->findChild<pqPropertyWidget*>("InteractiveSphere") : nullptr;
+    auto* sphere =
+      placement ? placement->findChild<pqPropertyWidget*>("InteractiveSphere") : nullptr;
     vtkSMUncheckedPropertyHelper(a->getProxy(), "Radius").Set(-0.1);
     QTest::qWait(50);
     CHECK(sphere && sphere->styleSheet().contains("background") &&
@@ -274,10 +276,12 @@ int main(int argc, char* argv[])
     const std::string name = a->getSMName().toStdString();
     CHECK(output->Text.find("radius must be a positive") != std::string::npos &&
         output->Text.find(name) != std::string::npos,
-      "the refusal names the source '" << name << "':\n" << output->Text);
+      "the refusal names the source '" << name << "':\n"
+                                       << output->Text);
     CHECK(sphere && sphere->styleSheet().contains("background"),
       "after Apply the refused radius stays marked");
-    CHECK(vtkSMSourceProxy::SafeDownCast(a->getProxy())->GetDataInformation(0)->GetNumberOfPoints() > 0,
+    CHECK(
+      vtkSMSourceProxy::SafeDownCast(a->getProxy())->GetDataInformation(0)->GetNumberOfPoints() > 0,
       "the last valid sphere stays");
     vtkSMUncheckedPropertyHelper(a->getProxy(), "Radius").Set(1);
     panel->apply();
@@ -323,7 +327,8 @@ int main(int argc, char* argv[])
     pqPipelineSource* surface = builder->createSource("sources", "PiSurface", server);
     apply(surface);
     pqPipelineSource* cast = builder->createFilter("filters", "PiRayCast", surface);
-    vtkSMPropertyHelper(cast->getProxy(), "Resolution").Set(std::array<int, 2>{ 128, 128 }.data(), 2);
+    vtkSMPropertyHelper(cast->getProxy(), "Resolution")
+      .Set(std::array<int, 2>{ 128, 128 }.data(), 2);
     apply(cast);
     CHECK(Visible(cast, 0, view), "Pi Ray Cast: the hits are shown");
     CHECK(!Visible(cast, 1, view), "Pi Ray Cast: the image port is not shown");
@@ -335,8 +340,7 @@ int main(int argc, char* argv[])
     CHECK(shown[1] - shown[0] < 1.01 * (hits[1] - hits[0]),
       "Pi Ray Cast: nothing larger than the surface is shown (width " << shown[1] - shown[0]
                                                                       << ")");
-    pqPipelineSource* mesh =
-      builder->createFilter("filters", "ImageBasedTriangulation", cast);
+    pqPipelineSource* mesh = builder->createFilter("filters", "ImageBasedTriangulation", cast);
     apply(mesh);
     CHECK(Visible(mesh, 0, view), "Image Based Triangulation: shown");
     expectQuiet("Image Based Triangulation");
@@ -351,17 +355,16 @@ int main(int argc, char* argv[])
   // A protein: AtomicNumber in CPK colours, categories not a continuous map.
   newView();
   {
-    pqPipelineSource* molecule = builder->createReader("sources", "PiMoleculeReader",
-      { QString("/usr/share/freesasa/test-data/1ubq.pdb") }, server);
+    pqPipelineSource* molecule = builder->createReader(
+      "sources", "PiMoleculeReader", { QString("/usr/share/freesasa/test-data/1ubq.pdb") }, server);
     apply(molecule);
-    pqPipelineSource* surface =
-      builder->createFilter("filters", "MolecularPiSurface", molecule);
+    pqPipelineSource* surface = builder->createFilter("filters", "MolecularPiSurface", molecule);
     apply(surface);
     CHECK(Visible(surface, 0, view), "Molecular Pi Surface: shown");
     expectQuiet("Molecular Pi Surface");
     vtkNew<vtkSMTransferFunctionManager> manager;
-    vtkSMProxy* lut =
-      manager->GetColorTransferFunction("AtomicNumber", surface->getProxy()->GetSessionProxyManager());
+    vtkSMProxy* lut = manager->GetColorTransferFunction(
+      "AtomicNumber", surface->getProxy()->GetSessionProxyManager());
     CHECK(lut && vtkSMPropertyHelper(lut, "IndexedLookup").GetAsInt() == 1,
       "AtomicNumber is coloured by element (categories)");
     if (lut)

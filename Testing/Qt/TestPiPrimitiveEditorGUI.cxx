@@ -7,8 +7,8 @@
 // drives them with QTest: add a torus, edit its minor radius, an invalid radius and an
 // odd superellipsoid exponent (both refused), duplicate / move / remove, and a change of
 // the property from outside. After each Apply it checks the Model JSON and the mesh.
-#include "PiQtTestUtilities.h"
 #include "PiModel.h"
+#include "PiQtTestUtilities.h"
 
 #include "pqApplicationCore.h"
 #include "pqObjectBuilder.h"
@@ -40,7 +40,6 @@
 
 namespace
 {
-
 
 bool Parse(vtkSMProxy* proxy, pisurf::Model& model)
 {
@@ -94,7 +93,8 @@ int main(int argc, char* argv[])
   panel.resize(460, 1100);
   panel.show();
   CHECK(QTest::qWaitForWindowExposed(&panel), "the panel is shown");
-  auto apply = [&]() {
+  auto apply = [&]()
+  {
     panel.apply();
     proxy->UpdateVTKObjects();
   };
@@ -105,7 +105,8 @@ int main(int argc, char* argv[])
     std::cerr << "the Model property did not get the primitive editor\n";
     return EXIT_FAILURE;
   }
-  CHECK(table->rowCount() == 2, "the default model has 2 primitives, the table " << table->rowCount());
+  CHECK(
+    table->rowCount() == 2, "the default model has 2 primitives, the table " << table->rowCount());
 
   // Add a torus: choose the type, click Add.
   auto* newType = Find<QComboBox>(&panel, "PiNewPrimitiveType");
@@ -150,7 +151,8 @@ int main(int argc, char* argv[])
     "the status names the parameter: " << (status ? status->text().toStdString() : ""));
   CHECK(recorder->Text.find("minor_radius") != std::string::npos,
     "the refusal is a warning in the output window");
-  CHECK(std::string(Find<QLineEdit>(&panel, "PiParameter_MajorRadius")->text().toStdString()) == "1",
+  CHECK(
+    std::string(Find<QLineEdit>(&panel, "PiParameter_MajorRadius")->text().toStdString()) == "1",
     "the other fields still show the model");
 
   if (argc > 2)

@@ -11,12 +11,12 @@
 // the view shows that widget and no other, and only that type's own parameters show;
 // the sphere's widget, dragged, moves the sphere. Writes PiPrimitiveBox.png (the
 // user guide's picture) into the picture folder when given one.
-#include "PiQtTestUtilities.h"
 #include "PiModel.h"
+#include "PiQtTestUtilities.h"
 
-#include "pqPVApplicationCore.h"
 #include "pqInterfaceTracker.h"
 #include "pqObjectBuilder.h"
+#include "pqPVApplicationCore.h"
 #include "pqPipelineSource.h"
 #include "pqPropertyWidget.h"
 #include "pqProxyWidget.h"
@@ -38,8 +38,8 @@
 
 #include <algorithm>
 #include <array>
-#include <vector>
 #include <cstdlib>
+#include <vector>
 
 namespace
 {
@@ -49,9 +49,9 @@ bool OutputModel(vtkSMSourceProxy* proxy, pisurf::Model& model)
   proxy->UpdatePipeline();
   auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
   vtkDataObject* output = algorithm ? algorithm->GetOutputDataObject(0) : nullptr;
-  auto* json = output ? vtkStringArray::SafeDownCast(
-                          output->GetFieldData()->GetAbstractArray("PiSurfaceModel"))
-                      : nullptr;
+  auto* json = output
+    ? vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("PiSurfaceModel"))
+    : nullptr;
   std::string error;
   return json && json->GetNumberOfValues() == 1 &&
     pisurf::ParseModel(json->GetValue(0), model, error) && model.Primitives.size() == 1;
@@ -115,14 +115,16 @@ int main(int argc, char* argv[])
   // As ParaView's properties panel does: the decorators hide the other types' widgets.
   panel->updatePanel();
   CHECK(QTest::qWaitForWindowExposed(&window), "the window is shown");
-  auto apply = [&]() {
+  auto apply = [&]()
+  {
     panel->apply();
     proxy->UpdateVTKObjects();
     view->forceRender();
   };
   apply();
   // Another type: the panel shows that type's widget (as after an edit in ParaView).
-  auto showType = [&](int type) {
+  auto showType = [&](int type)
+  {
     vtkSMPropertyHelper(proxy, "Type").Set(type);
     proxy->UpdateVTKObjects();
     panel->updatePanel();
@@ -142,8 +144,8 @@ int main(int argc, char* argv[])
     vtkSMPropertyHelper(box, "RotationInfo").Get(rotation, 3);
     vtkSMPropertyHelper(box, "ScaleInfo").Get(scale, 3);
     CHECK(Near3(rotation, 0, 0, 30, 1e-6) && Near3(scale, 1.5, 1, 0.5, 1e-6),
-      "the box is turned by Orientation and scaled by Radii: rotation " << Str3(rotation)
-                                                                        << ", scale " << Str3(scale));
+      "the box is turned by Orientation and scaled by Radii: rotation "
+        << Str3(rotation) << ", scale " << Str3(scale));
     // Turning the box turns the ellipsoid.
     const double turned[3] = { 0, 0, 75 };
     vtkSMPropertyHelper(box, "Rotation").Set(turned, 3);
@@ -154,7 +156,8 @@ int main(int argc, char* argv[])
     CHECK(Near3(now, 0, 0, 75, 1e-6), "turning the box sets Orientation: " << Str3(now));
     pisurf::Model model;
     const bool parsed = OutputModel(proxy, model);
-    const pisurf::PrimitiveSpec& e = model.Primitives.empty() ? pisurf::PrimitiveSpec() : model.Primitives[0];
+    const pisurf::PrimitiveSpec& e =
+      model.Primitives.empty() ? pisurf::PrimitiveSpec() : model.Primitives[0];
     CHECK(parsed && e.Orient == pisurf::Orientation::Rotation &&
         Near(e.RotationAngle * (e.RotationAxis[2] > 0 ? 1 : -1), 75, 1e-6) &&
         Near(std::abs(e.RotationAxis[2]), 1, 1e-9),
@@ -221,9 +224,9 @@ int main(int argc, char* argv[])
   struct TypeView
   {
     const char* Name;
-    const char* Panel;               // ParaView's panel widget in the Placement group
-    const char* Widget;              // the representation of its 3D widget
-    std::vector<const char*> Shown;  // its parameters outside the placement widget
+    const char* Panel;              // ParaView's panel widget in the Placement group
+    const char* Widget;             // the representation of its 3D widget
+    std::vector<const char*> Shown; // its parameters outside the placement widget
   };
   const std::vector<TypeView> types = {
     { "Sphere", "InteractiveSphere", "SphereWidgetRepresentation", {} },
@@ -258,9 +261,9 @@ int main(int argc, char* argv[])
                     << count << " shown)");
     for (const char* name : typeOnly)
     {
-      const bool wanted = std::find_if(expected.Shown.begin(), expected.Shown.end(),
-                            [&](const char* n) { return std::string(n) == name; }) !=
-        expected.Shown.end();
+      const bool wanted =
+        std::find_if(expected.Shown.begin(), expected.Shown.end(),
+          [&](const char* n) { return std::string(n) == name; }) != expected.Shown.end();
       auto* w = panel->findChild<pqPropertyWidget*>(name);
       CHECK(w && w->isVisible() == wanted,
         expected.Name << ": " << name << (wanted ? " is shown" : " is hidden"));
