@@ -266,6 +266,19 @@ TEST_P(FieldConformance, BoxAnswersEqualPointAnswers)
       }
 }
 
+// A cube in the region: its centre drawn first, then its half side, between `smallest`
+// and 0.1 of the model's size.
+void RandomCube(Random& random, const FieldCase& c, double smallest, double box[6])
+{
+  const Point centre = InRegion(random, c.Region);
+  const double half = c.Scale * random.Uniform(smallest, 0.1);
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = centre[a] - half;
+    box[2 * a + 1] = centre[a] + half;
+  }
+}
+
 // Dense sampling of `box` (9³ points) agrees with `sign`.
 ::testing::AssertionResult SignHoldsOn(const FieldCase& c, const double box[6], int sign)
 {
@@ -291,10 +304,8 @@ TEST_P(FieldConformance, ClassifyBoxIsNeverWrong)
   int decided = 0;
   for (int n = 0; n < 300; ++n)
   {
-    const Point centre = InRegion(random, c.Region);
-    const double half = c.Scale * random.Uniform(0.002, 0.1);
-    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half,
-      centre[2] - half, centre[2] + half };
+    double box[6];
+    RandomCube(random, c, 0.002, box);
     const int sign = c.Field->ClassifyBox(box);
     if (sign == 0)
     {
@@ -439,10 +450,8 @@ TEST_P(FieldConformance, OctantClassificationIsNeverWrong)
   int decidedOctants = 0;
   for (int n = 0; n < 200; ++n)
   {
-    const Point centre = InRegion(random, c.Region);
-    const double half = c.Scale * random.Uniform(0.005, 0.1);
-    const double box[6] = { centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half,
-      centre[2] - half, centre[2] + half };
+    double box[6];
+    RandomCube(random, c, 0.005, box);
     for (const bool all : { false, true })
     {
       int octants[8];
