@@ -9,14 +9,17 @@
 #include "pqUndoStack.h"
 #include "vtkDataObject.h"
 #include "vtkMath.h"
+#include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiSurface.h"
+#include "vtkSMParaViewPipelineController.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionManager.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,13 +106,28 @@ bool SurfaceInsidePrimitives(vtkSMProxy* producer)
   return total > 0 && 2 * negative > total;
 }
 
-// The number of points of `producer`'s output `port`.
+// Updates `source` so that its shown ports are computed and its data information is
+// fresh: the server side (vtkPiSIOnDemandSourceProxy) computes a port after the first
+// only for a visible consumer, such as a representation just created or shown, which
+// then pulls the data without the client's data information knowing.
+// UpdatePipeline(time) runs even when the source has executed since its last change.
+void UpdateShownPorts(vtkSMSourceProxy* source)
+{
+  vtkNew<vtkSMParaViewPipelineController> controller;
+  vtkSMProxy* timeKeeper = controller->FindTimeKeeper(source->GetSession());
+  source->UpdatePipeline(timeKeeper ? vtkSMPropertyHelper(timeKeeper, "Time").GetAsDouble() : 0.0);
+}
+
+// The number of points of `producer`'s output `port`, updated first.
 vtkIdType NumberOfPoints(vtkSMProxy* producer, unsigned int port)
 {
   auto* source = vtkSMSourceProxy::SafeDownCast(producer);
-  return source && port < source->GetNumberOfOutputPorts()
-    ? source->GetDataInformation(port)->GetNumberOfPoints()
-    : 0;
+  if (!source || port >= source->GetNumberOfOutputPorts())
+  {
+    return 0;
+  }
+  UpdateShownPorts(source);
+  return source->GetDataInformation(port)->GetNumberOfPoints();
 }
 
 // `Factor` as categories, one palette colour per primitive (index 0 to count-1).
@@ -244,9 +262,28 @@ void pqPiDisplayBehavior::onSourceNamed(pqPipelineSource* source)
 void pqPiDisplayBehavior::onRepresentationAdded(pqRepresentation* representation)
 {
   vtkSMProxy* proxy = representation ? representation->getProxy() : nullptr;
-  if (proxy && !RestoringProxies(proxy))
+  if (!proxy)
+  {
+    return;
+  }
+  if (!RestoringProxies(proxy))
   {
     pqPiDisplayBehavior::ApplyDefaults(proxy);
+  }
+  // A Primitives port shown again is computed by its representation's render: update
+  // its producer then, so that the Information panel tells the data shown.
+  vtkSMPropertyHelper input(proxy, "Input", /*quiet=*/true);
+  auto* producer = vtkSMSourceProxy::SafeDownCast(input.GetAsProxy());
+  if (producer && input.GetOutputPort() == 1 && IsPiSurfaceProducer(producer))
+  {
+    QObject::connect(representation, &pqRepresentation::visibilityChanged, this,
+      [weakProducer = vtkWeakPointer<vtkSMSourceProxy>(producer)](bool visible)
+      {
+        if (visible && weakProducer)
+        {
+          UpdateShownPorts(weakProducer);
+        }
+      });
   }
 }
 

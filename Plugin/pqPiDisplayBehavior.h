@@ -16,6 +16,10 @@
  * - "Pi Primitive": the next colour of the palette.
  * - Molecules ("Pi Molecule Reader", "Molecular Pi Surface"): the `AtomicNumber` colour
  *   map becomes categorical with CPK colours (H white, C grey, N blue, O red, ...).
+ * A Primitives port is computed on the server only for a visible consumer
+ * (vtkPiSIOnDemandSourceProxy): its producer is updated when its representation is
+ * created or shown again, so that the colouring and the Information panel see its
+ * data.
  * It also names the VTK object of each PiSurfaces source and filter after its proxy
  * (vtkObject::SetObjectName), so that error messages say which source refused a value.
  *

@@ -31,6 +31,9 @@ check(reader.ComputeGradientMagnitude == int(cxx.GetComputeGradientMagnitude()),
 from pisurfaces import vtkPiSurfaceSource
 source = PiSurface()
 check(source.Model == vtkPiSurfaceSource().GetModel(), "Model default (the paper's two spheres)")
+# The Primitives port is computed when shown (TestPiPrimitivesShown), or with every
+# update with PrimitivesOnDemand off.
+source.PrimitivesOnDemand = 0
 source.UpdatePipeline()
 check(source.GetDataInformation(0).GetNumberOfCells() > 1000, "Pi Surface source meshes its model")
 check(source.GetDataInformation(1).GetNumberOfCells() > 1000, "Pi Surface source: primitives port")
@@ -39,7 +42,8 @@ check(source.GetDataInformation(1).GetNumberOfCells() > 1000, "Pi Surface source
 display = Show(source, CreateView("RenderView"))
 check(display.Opacity == 1 and display.ColorArrayName[1] == "",
       "pvpython Show() keeps ParaView's defaults: Opacity %g" % display.Opacity)
-formic = PiSurface(Model=open(os.path.join(models, "formic_acid.pisurf")).read(), Resolution=64)
+formic = PiSurface(Model=open(os.path.join(models, "formic_acid.pisurf")).read(), Resolution=64,
+                   PrimitivesOnDemand=0)
 formic.UpdatePipeline()
 check(formic.GetDataInformation(1).DataInformation.GetArrayInformation("Factor", 0) is not None,
       "primitives carry Factor")
