@@ -11,7 +11,6 @@
 #include "vtkBox.h"
 #include "vtkCone.h"
 #include "vtkCylinder.h"
-#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkPiPrimitive.h"
 #include "vtkPlane.h"
@@ -29,13 +28,7 @@
 int TestPiImplicitBridge(int, char*[])
 {
   int failures = 0;
-  vtkNew<vtkMinimalStandardRandomSequence> rng;
-  rng->SetSeed(11);
-  auto random = [&](double lo, double hi)
-  {
-    rng->Next();
-    return rng->GetRangeValue(lo, hi);
-  };
+  pitest::Random random(11);
 
   vtkNew<vtkTransform> move;
   move->Translate(0.3, -0.2, 0.1);
@@ -50,17 +43,17 @@ int TestPiImplicitBridge(int, char*[])
   movedSphere->SetRadius(1.1);
   movedSphere->SetTransform(move);
   vtkNew<vtkPlane> plane;
-  plane->SetOrigin(0.1, 0.2, 0.3);
-  plane->SetNormal(1, 2, 2);
+  plane->SetOrigin(-0.3, 0.4, 0.1);
+  plane->SetNormal(2, -1, 0.5);
   vtkNew<vtkCylinder> cylinder;
-  cylinder->SetCenter(0.5, 0, 0);
-  cylinder->SetAxis(0, 1, 1);
-  cylinder->SetRadius(0.7);
+  cylinder->SetCenter(0, 0.5, -0.2);
+  cylinder->SetAxis(1, 0, 1);
+  cylinder->SetRadius(0.6);
   vtkNew<vtkCone> cone;
   cone->SetAngle(25);
   cone->SetTransform(move);
   vtkNew<vtkQuadric> quadric;
-  quadric->SetCoefficients(1, 2, 3, 0.1, 0.2, 0.3, -1, 0.5, 0.25, -2);
+  quadric->SetCoefficients(2, -1, 0.5, 0.3, -0.2, 0.1, 0.4, -0.5, 1, -1.5);
   vtkNew<vtkPiPrimitive> torus;
   torus->SetTypeToTorus();
   torus->SetCenter(0.1, 0.2, -0.3);
