@@ -87,7 +87,8 @@ int TestPiImplicitBridge(int, char*[])
     for (int i = 0; i < 200; ++i)
     {
       double p[3] = { random(-2, 2), random(-2, 2), random(-2, 2) };
-      const double expected = named.second->EvaluateFunction(p);
+      // FunctionValue applies the function's Transform; EvaluateFunction does not.
+      const double expected = named.second->FunctionValue(p);
       const double got = pf.Evaluate(p);
       if (!(std::fabs(got - expected) <= 1e-12 * std::max(1.0, std::fabs(expected))))
       {
