@@ -1,26 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPiSurface.h"
 
+#include "Bridge/PiImplicitBridge.h"
 #include "PiModel.h"
 #include "PiParallel.h"
 #include "PiProductKernel.h"
-#include "vtkPiPrimitive.h"
 
 #include "vtkCallbackCommand.h"
-#include "vtkCone.h"
-#include "vtkCylinder.h"
 #include "vtkDataArray.h"
-#include "vtkLinearTransform.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "vtkPlane.h"
-#include "vtkQuadric.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphere.h"
 #include "vtksys/SystemTools.hxx"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <fstream>
@@ -30,143 +24,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPiSurface);
-
-namespace
-{
-using pisurf::Polynomial3;
-using pisurf::PolynomialFactor;
-
-Polynomial3 V(int a)
-{
-  return Polynomial3::Variable(a);
-}
-
-// VTK's polynomial implicit functions, as the polynomials they evaluate (before their
-// Transform). False for anything else.
-bool RecognizePolynomial(vtkImplicitFunction* f, PolynomialFactor& pf)
-{
-  pf = PolynomialFactor();
-  if (auto* s = vtkSphere::SafeDownCast(f))
-  {
-    const double R = s->GetRadius();
-    pf.Poly = V(0).Pow(2) + V(1).Pow(2) + V(2).Pow(2) - Polynomial3::Constant(R * R);
-    const double* c = s->GetCenter();
-    for (int i = 0; i < 3; ++i)
-    {
-      pf.B[i] = -c[i];
-      pf.Bounds[2 * i] = c[i] - std::fabs(R);
-      pf.Bounds[2 * i + 1] = c[i] + std::fabs(R);
-    }
-    pf.Bounded = R != 0.0;
-    return true;
-  }
-  if (auto* p = vtkPlane::SafeDownCast(f))
-  {
-    const double* n = p->GetNormal();
-    const double* o = p->GetOrigin();
-    pf.Poly = V(0).Scaled(n[0]) + V(1).Scaled(n[1]) + V(2).Scaled(n[2]);
-    for (int i = 0; i < 3; ++i)
-    {
-      pf.B[i] = -o[i];
-    }
-    return true;
-  }
-  if (auto* c = vtkCylinder::SafeDownCast(f))
-  {
-    // |q|² − (â·q)² − R² with q = p − center.
-    double a[3];
-    c->GetAxis(a);
-    vtkMath::Normalize(a);
-    const double R = c->GetRadius();
-    Polynomial3 aq = V(0).Scaled(a[0]) + V(1).Scaled(a[1]) + V(2).Scaled(a[2]);
-    pf.Poly = V(0).Pow(2) + V(1).Pow(2) + V(2).Pow(2) - aq.Pow(2) - Polynomial3::Constant(R * R);
-    const double* ctr = c->GetCenter();
-    for (int i = 0; i < 3; ++i)
-    {
-      pf.B[i] = -ctr[i];
-    }
-    return true;
-  }
-  if (auto* c = vtkCone::SafeDownCast(f))
-  {
-    const double t = std::tan(vtkMath::RadiansFromDegrees(c->GetAngle()));
-    pf.Poly = V(1).Pow(2) + V(2).Pow(2) - V(0).Pow(2).Scaled(t * t);
-    return true;
-  }
-  if (auto* q = vtkQuadric::SafeDownCast(f))
-  {
-    const double* a = q->GetCoefficients();
-    Polynomial3& P = pf.Poly;
-    P.AddTerm(a[0], 2, 0, 0);
-    P.AddTerm(a[1], 0, 2, 0);
-    P.AddTerm(a[2], 0, 0, 2);
-    P.AddTerm(a[3], 1, 1, 0);
-    P.AddTerm(a[4], 0, 1, 1);
-    P.AddTerm(a[5], 1, 0, 1);
-    P.AddTerm(a[6], 1, 0, 0);
-    P.AddTerm(a[7], 0, 1, 0);
-    P.AddTerm(a[8], 0, 0, 1);
-    P.AddTerm(a[9], 0, 0, 0);
-    return true;
-  }
-  return false;
-}
-
-// Folds a function's linear Transform (f is evaluated at M·p + t) into the polynomial's
-// affine map. False for a non-linear transform.
-bool ApplyTransform(vtkAbstractTransform* transform, PolynomialFactor& pf)
-{
-  if (!transform)
-  {
-    return true;
-  }
-  auto* linear = vtkLinearTransform::SafeDownCast(transform);
-  if (!linear)
-  {
-    return false;
-  }
-  linear->Update();
-  vtkMatrix4x4* M = linear->GetMatrix();
-  double A[3][3], B[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    B[i] = pf.B[i];
-    for (int j = 0; j < 3; ++j)
-    {
-      A[i][j] = 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        A[i][j] += pf.A[i][k] * M->GetElement(k, j);
-      }
-      B[i] += pf.A[i][j] * M->GetElement(j, 3);
-    }
-  }
-  if (pf.Bounded)
-  {
-    // The box corners c satisfy M·p + t = c: map them back and take their box.
-    double Minv[16];
-    vtkMatrix4x4::Invert(M->GetData(), Minv);
-    double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (int c = 0; c < 8; ++c)
-    {
-      const double corner[4] = { pf.Bounds[(c & 1)], pf.Bounds[2 + ((c >> 1) & 1)],
-        pf.Bounds[4 + ((c >> 2) & 1)], 1.0 };
-      double p[4];
-      vtkMatrix4x4::MultiplyPoint(Minv, corner, p);
-      for (int i = 0; i < 3; ++i)
-      {
-        box[2 * i] = std::min(box[2 * i], p[i] / p[3]);
-        box[2 * i + 1] = std::max(box[2 * i + 1], p[i] / p[3]);
-      }
-    }
-    std::copy(box, box + 6, pf.Bounds);
-  }
-  std::copy(&A[0][0], &A[0][0] + 9, &pf.A[0][0]);
-  std::copy(B, B + 3, pf.B);
-  return true;
-}
-}
 
 struct vtkPiSurface::vtkInternals
 {
@@ -220,15 +77,9 @@ void vtkPiSurface::AddFactor(vtkImplicitFunction* f)
   this->Internals->Factors.emplace_back(f);
   this->Internals->ObserverTags.push_back(
     f->AddObserver(vtkCommand::ModifiedEvent, this->Internals->FactorObserver));
-  if (auto* p = vtkPiPrimitive::SafeDownCast(f))
+  for (const auto& kv : this->Internals->Parameters)
   {
-    for (const auto& kv : this->Internals->Parameters)
-    {
-      if (std::isnan(p->GetParameter(kv.first.c_str())))
-      {
-        p->SetParameter(kv.first.c_str(), kv.second);
-      }
-    }
+    pisurf::SetFactorParameter(f, kv.first, kv.second, true);
   }
   this->Internals->Dirty = true;
   this->Modified();
@@ -318,10 +169,7 @@ void vtkPiSurface::SetParameter(const char* name, double value)
   this->Internals->Parameters[name] = value;
   for (auto& f : this->Internals->Factors)
   {
-    if (auto* p = vtkPiPrimitive::SafeDownCast(f))
-    {
-      p->SetParameter(name, value);
-    }
+    pisurf::SetFactorParameter(f, name, value, false);
   }
   this->Modified();
 }
@@ -366,23 +214,14 @@ const pisurf::ProductKernel* vtkPiSurface::FastKernel()
         {
           vtkImplicitFunction* f = in.Factors[i];
           pisurf::Factor factor;
-          bool polynomial = false;
-          if (auto* p = vtkPiPrimitive::SafeDownCast(f))
+          std::string reason;
+          const pisurf::FactorKind kind = pisurf::ExactFactor(f, factor.Polynomial, reason);
+          if (kind == pisurf::FactorKind::Invalid)
           {
-            auto pf = p->GetPolynomialFactor();
-            if (!pf)
-            {
-              in.Error = "factor " + std::to_string(i) + " is invalid: " + p->GetErrorMessage();
-              break;
-            }
-            factor.Polynomial = *pf;
-            polynomial = true;
+            in.Error = "factor " + std::to_string(i) + " is invalid: " + reason;
+            break;
           }
-          else
-          {
-            polynomial = RecognizePolynomial(f, factor.Polynomial);
-          }
-          if (polynomial && ApplyTransform(f->GetTransform(), factor.Polynomial))
+          if (kind == pisurf::FactorKind::Exact)
           {
             factor.IsPolynomial = true;
           }
@@ -623,36 +462,7 @@ bool vtkPiSurface::GetCoreModel(pisurf::Model& model)
         ") is not a polynomial and cannot be written to a model";
       return false;
     }
-    auto* p = vtkPiPrimitive::SafeDownCast(f);
-    bool asSpec = p && !f->GetTransform();
-    if (asSpec)
-    {
-      // The expression's parameters must agree with the model's.
-      for (const auto& kv : p->GetParameters())
-      {
-        auto it = m.Parameters.find(kv.first);
-        if (it == m.Parameters.end())
-        {
-          m.Parameters[kv.first] = kv.second;
-        }
-        else if (it->second != kv.second)
-        {
-          asSpec = false;
-        }
-      }
-    }
-    if (asSpec)
-    {
-      m.Primitives.push_back(p->GetSpec());
-    }
-    else
-    {
-      pisurf::PrimitiveSpec s;
-      s.Type = pisurf::PrimitiveType::Polynomial;
-      s.Name = p ? p->GetName() : f->GetClassName();
-      s.Expression = kf.Polynomial.WorldPolynomial().ToString();
-      m.Primitives.push_back(s);
-    }
+    m.Primitives.push_back(pisurf::DescribeFactor(f, kf.Polynomial, m.Parameters));
   }
   model = std::move(m);
   return true;
@@ -675,12 +485,7 @@ void vtkPiSurface::SetCoreModel(const pisurf::Model& model)
   this->Blending = model.Blending;
   for (const pisurf::PrimitiveSpec& s : model.Primitives)
   {
-    vtkNew<vtkPiPrimitive> p;
-    for (const auto& kv : model.Parameters)
-    {
-      p->SetParameter(kv.first.c_str(), kv.second);
-    }
-    p->SetSpec(s);
+    vtkSmartPointer<vtkImplicitFunction> p = pisurf::MakeFunction(s, model.Parameters);
     in.Factors.emplace_back(p);
     in.ObserverTags.push_back(p->AddObserver(vtkCommand::ModifiedEvent, in.FactorObserver));
   }

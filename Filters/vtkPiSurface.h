@@ -9,10 +9,14 @@
  * objects" (WSCG 2019). Small r shrinks the surface onto the union of the primitives,
  * larger r inflates and blends them.
  *
- * Factors may be vtkPiPrimitive or any VTK implicit function. vtkSphere, vtkPlane,
- * vtkCylinder, vtkCone and vtkQuadric (with no transform or a linear one) are recognised
- * as the polynomials they are, so algorithms evaluate them exactly and in batches; other
- * functions are called through FunctionValue/FunctionGradient.
+ * vtkPiSurface is a container, like vtkImplicitSum: a factor is any
+ * vtkImplicitFunction, and vtkPiSurface knows no concrete function type. The
+ * translation to the exact model is the bridge's (Filters/Bridge/PiImplicitBridge.h):
+ * vtkPiPrimitive, and VTK's vtkSphere, vtkPlane, vtkCylinder, vtkCone and vtkQuadric
+ * (with no transform or a linear one), are the polynomials they are, so algorithms
+ * evaluate them exactly and in batches; other functions are called through
+ * FunctionValue/FunctionGradient. A model's primitives become vtkPiPrimitive factors,
+ * and GetModelJSON writes each factor's model entry, both through the bridge.
  *
  * The gradient is exact: ∇F = Σ_i ∇f_i Π_{j≠i} f_j, also where factors vanish.
  *
@@ -105,8 +109,8 @@ public:
   bool ResolveBounds(const double requested[6], double bounds[6]);
 
   ///@{
-  /// Named model parameters, forwarded to every vtkPiPrimitive factor (so that
-  /// changing "a" moves the cup's handle).
+  /// Named model parameters, forwarded to every factor that takes parameters (a
+  /// vtkPiPrimitive's expression), so that changing "a" moves the cup's handle.
   void SetParameter(const char* name, double value);
   double GetParameter(const char* name);
   int GetNumberOfParameters();

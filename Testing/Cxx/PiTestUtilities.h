@@ -4,6 +4,7 @@
 #define PiTestUtilities_h
 
 #include "vtkCommand.h"
+#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkPiSurface.h"
@@ -73,6 +74,21 @@ inline int RegressionResult(int argc, char* argv[], vtkRenderWindow* window)
   }
   return result == vtkRegressionTester::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
 }
+
+/// Uniform random numbers in [lo, hi) from VTK's seeded minimal standard sequence.
+class Random
+{
+public:
+  explicit Random(int seed) { this->Sequence->SetSeed(seed); }
+  double operator()(double lo, double hi)
+  {
+    this->Sequence->Next();
+    return this->Sequence->GetRangeValue(lo, hi);
+  }
+
+private:
+  vtkNew<vtkMinimalStandardRandomSequence> Sequence;
+};
 
 /// Watches an object's errors and warnings (so expected errors do not reach the
 /// output window) and lets a test assert on their text.

@@ -9,7 +9,6 @@
 #include "vtkCone.h"
 #include "vtkCylinder.h"
 #include "vtkDoubleArray.h"
-#include "vtkMinimalStandardRandomSequence.h"
 #include "vtkPlane.h"
 #include "vtkQuadric.h"
 #include "vtkSphere.h"
@@ -42,13 +41,7 @@ void FiniteDifference(vtkImplicitFunction* f, double p[3], double g[3])
 int TestPiSurface(int, char*[])
 {
   int failures = 0;
-  vtkNew<vtkMinimalStandardRandomSequence> rng;
-  rng->SetSeed(7);
-  auto random = [&](double lo, double hi)
-  {
-    rng->Next();
-    return rng->GetRangeValue(lo, hi);
-  };
+  pitest::Random random(7);
 
   // The paper's two spheres from VTK's own vtkSphere and one vtkPiPrimitive.
   vtkNew<vtkSphere> left;
