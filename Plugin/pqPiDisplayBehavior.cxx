@@ -11,7 +11,7 @@
 #include "vtkMath.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
-#include "vtkPiFlyingEdges.h"
+#include "vtkPiModelMesher.h"
 #include "vtkPiSurface.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
@@ -65,7 +65,7 @@ constexpr double Palette[8][3] = { { 0.85, 0.22, 0.18 }, { 0.22, 0.42, 0.85 }, {
 // session); false otherwise.
 bool SurfaceInsidePrimitives(vtkSMProxy* producer)
 {
-  auto* mesher = vtkPiFlyingEdges::SafeDownCast(producer->GetClientSideObject());
+  auto* mesher = vtkPiModelMesher::SafeDownCast(producer->GetClientSideObject());
   vtkPiSurface* surface = mesher ? mesher->GetPiSurface() : nullptr;
   double bounds[6];
   if (!surface || surface->GetNumberOfFactors() == 0 || !surface->GetModelBounds(bounds))
