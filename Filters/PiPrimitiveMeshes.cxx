@@ -5,12 +5,17 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkPiFlyingEdges.h"
 #include "vtkPiSurface.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 namespace pisurf
 {
@@ -51,6 +56,46 @@ void MeshPrimitives(vtkPiSurface* surface, const double bounds[6], const int dim
     append->Update();
     out->ShallowCopy(append->GetOutput());
   }
+}
+
+PortsNotGenerated MarkPortsNotGenerated(vtkAlgorithm* algorithm, vtkInformation* request,
+  vtkInformationVector* outputs, bool primitivesOnDemand, bool haveMesh, const Piece& meshPiece)
+{
+  PortsNotGenerated marks;
+  if (outputs->GetNumberOfInformationObjects() < 2 ||
+    !request->Has(vtkExecutive::FROM_OUTPUT_PORT()))
+  {
+    return marks;
+  }
+  const int from = request->Get(vtkExecutive::FROM_OUTPUT_PORT());
+  vtkInformation* meshInfo = outputs->GetInformationObject(0);
+  vtkInformation* primitivesInfo = outputs->GetInformationObject(1);
+  if (from == 0 && primitivesOnDemand)
+  {
+    // Port 1 only when it is asked for: it keeps its data, which the executive then
+    // knows to be out of date.
+    marks.Primitives = true;
+  }
+  else if (from == 1)
+  {
+    // Asked for the primitives alone: the mesh is left as it is when it is up to date
+    // for the same piece (its grid is then the one the primitives take).
+    auto* executive = vtkStreamingDemandDrivenPipeline::SafeDownCast(algorithm->GetExecutive());
+    vtkDataObject* mesh = meshInfo->Get(vtkDataObject::DATA_OBJECT());
+    const Piece asked = PieceOf(primitivesInfo);
+    marks.Mesh = executive && mesh && haveMesh &&
+      mesh->GetUpdateTime() > executive->GetPipelineMTime() && meshPiece.Piece == asked.Piece &&
+      meshPiece.Pieces == asked.Pieces;
+  }
+  if (marks.Mesh)
+  {
+    meshInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+  }
+  if (marks.Primitives)
+  {
+    primitivesInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+  }
+  return marks;
 }
 
 }

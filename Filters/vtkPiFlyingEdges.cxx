@@ -96,40 +96,10 @@ vtkTypeBool vtkPiFlyingEdges::ProcessRequest(
 void vtkPiFlyingEdges::MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs)
 {
   vtkInternals& in = *this->Internals;
-  in.SkipMesh = in.SkipPrimitives = false;
-  if (outputs->GetNumberOfInformationObjects() < 2 ||
-    !request->Has(vtkExecutive::FROM_OUTPUT_PORT()))
-  {
-    return;
-  }
-  const int from = request->Get(vtkExecutive::FROM_OUTPUT_PORT());
-  vtkInformation* meshInfo = outputs->GetInformationObject(0);
-  vtkInformation* primitivesInfo = outputs->GetInformationObject(1);
-  if (from == 0 && this->PrimitivesOnDemand)
-  {
-    // Port 1 only when it is asked for: it keeps its data, which the executive then
-    // knows to be out of date.
-    in.SkipPrimitives = true;
-  }
-  else if (from == 1)
-  {
-    // Asked for the primitives alone: the mesh is left as it is when it is up to date
-    // for the same piece (its grid is then the one the primitives take).
-    auto* executive = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
-    vtkDataObject* mesh = meshInfo->Get(vtkDataObject::DATA_OBJECT());
-    const pisurf::Piece asked = pisurf::PieceOf(primitivesInfo);
-    in.SkipMesh = executive && mesh && in.MeshDims[0] > 0 &&
-      mesh->GetUpdateTime() > executive->GetPipelineMTime() && in.MeshPiece.Piece == asked.Piece &&
-      in.MeshPiece.Pieces == asked.Pieces;
-  }
-  if (in.SkipMesh)
-  {
-    meshInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-  }
-  if (in.SkipPrimitives)
-  {
-    primitivesInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-  }
+  const pisurf::PortsNotGenerated marks = pisurf::MarkPortsNotGenerated(
+    this, request, outputs, this->PrimitivesOnDemand, in.MeshDims[0] > 0, in.MeshPiece);
+  in.SkipMesh = marks.Mesh;
+  in.SkipPrimitives = marks.Primitives;
 }
 
 vtkMTimeType vtkPiFlyingEdges::GetMTime()
