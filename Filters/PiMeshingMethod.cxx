@@ -19,6 +19,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 namespace pisurf
@@ -26,32 +27,44 @@ namespace pisurf
 namespace
 {
 
-// An inner algorithm's errors and warnings as the mesher's own: its name replaced by the
-// mesher's, given to the mesher's observers or else to the output window.
+// An inner algorithm's errors and warnings as the mesher's own: the same file, line and
+// text, its name replaced by the mesher's (the output window then gives them to the
+// mesher's observers, as it does the mesher's own).
 class ForwardMessages : public vtkCommand
 {
 public:
   static ForwardMessages* New() { return new ForwardMessages; }
   void Execute(vtkObject* caller, unsigned long event, void* data) override
   {
+    // The event's text: "ERROR: In <file>, line <n>\n<description>: <message>\n\n".
     std::string text = data ? static_cast<const char*>(data) : "";
+    std::string file;
+    int line = 0;
+    const size_t in = text.find("In "), comma = text.find(", line "), end = text.find('\n');
+    if (in != std::string::npos && comma != std::string::npos && end != std::string::npos &&
+      in < comma && comma < end)
+    {
+      file = text.substr(in + 3, comma - in - 3);
+      line = std::atoi(text.c_str() + comma + 7);
+      text.erase(0, end + 1);
+    }
+    while (!text.empty() && text.back() == '\n')
+    {
+      text.pop_back();
+    }
     const std::string inner = caller->GetObjectDescription();
     const size_t at = text.find(inner);
     if (at != std::string::npos)
     {
       text.replace(at, inner.size(), this->Outer->GetObjectDescription());
     }
-    if (this->Outer->HasObserver(event))
+    if (event == vtkCommand::ErrorEvent)
     {
-      this->Outer->InvokeEvent(event, const_cast<char*>(text.c_str()));
-    }
-    else if (event == vtkCommand::ErrorEvent)
-    {
-      vtkOutputWindowDisplayErrorText(text.c_str());
+      vtkOutputWindowDisplayErrorText(file.c_str(), line, text.c_str(), this->Outer);
     }
     else
     {
-      vtkOutputWindowDisplayWarningText(text.c_str());
+      vtkOutputWindowDisplayWarningText(file.c_str(), line, text.c_str(), this->Outer);
     }
   }
   vtkObject* Outer = nullptr;
