@@ -101,8 +101,12 @@ public:
     fe->SetGeneratePrimitives(m->GetGeneratePrimitives());
     fe->SetAutomaticResolution(m->GetAutomaticResolution());
     fe->SetMaximumAutomaticResolution(m->GetMaximumAutomaticResolution());
-    // Port 1 only when it is wanted: asked from port 0, it is then left as it is.
-    fe->SetPrimitivesOnDemand(!request.Primitives);
+    // Port 1 only when it is wanted: asked from port 0, it is then left as it is (asked
+    // from port 1, the setting does not apply and is left, so the mesh stays up to date).
+    if (request.Mesh)
+    {
+      fe->SetPrimitivesOnDemand(!request.Primitives);
+    }
     // The same piece on both ports as the mesher's request.
     vtkNew<vtkInformationVector> requests;
     requests->SetNumberOfInformationObjects(fe->GetNumberOfOutputPorts());

@@ -113,13 +113,19 @@ int vtkPiModelMesher::RequestData(
     vtkErrorMacro(<< "Blending must be a finite number");
     return 0;
   }
-  if (!this->LoadModel(inputVector, in.Surface))
+  // Port 1 alone (SkipMesh) follows a successful mesh with the same settings and inputs:
+  // the surface holds its model already, and reloading it would re-mesh port 0 inside.
+  if (!in.SkipMesh)
   {
-    return 0;
-  }
-  if (overrideBlending)
-  {
-    in.Surface->SetBlending(this->Blending);
+    in.HasMesh = false;
+    if (!this->LoadModel(inputVector, in.Surface))
+    {
+      return 0;
+    }
+    if (overrideBlending)
+    {
+      in.Surface->SetBlending(this->Blending);
+    }
   }
   pisurf::MeshingRequest request;
   request.Surface = in.Surface;
