@@ -4,6 +4,8 @@
 #include "PiTiming.h"
 
 #include "PiLastValidOutput.h"
+#include "PiMeshingGrid.h"
+#include "PiPrimitiveMeshes.h"
 
 #include "Meshing/PiBlockGrid.h"
 #include "Meshing/PiMeshingDriver.h"
@@ -13,7 +15,6 @@
 #include "PiProductKernel.h"
 #include "vtkPiSurface.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -95,40 +96,10 @@ vtkTypeBool vtkPiFlyingEdges::ProcessRequest(
 void vtkPiFlyingEdges::MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs)
 {
   vtkInternals& in = *this->Internals;
-  in.SkipMesh = in.SkipPrimitives = false;
-  if (outputs->GetNumberOfInformationObjects() < 2 ||
-    !request->Has(vtkExecutive::FROM_OUTPUT_PORT()))
-  {
-    return;
-  }
-  const int from = request->Get(vtkExecutive::FROM_OUTPUT_PORT());
-  vtkInformation* meshInfo = outputs->GetInformationObject(0);
-  vtkInformation* primitivesInfo = outputs->GetInformationObject(1);
-  if (from == 0 && this->PrimitivesOnDemand)
-  {
-    // Port 1 only when it is asked for: it keeps its data, which the executive then
-    // knows to be out of date.
-    in.SkipPrimitives = true;
-  }
-  else if (from == 1)
-  {
-    // Asked for the primitives alone: the mesh is left as it is when it is up to date
-    // for the same piece (its grid is then the one the primitives take).
-    auto* executive = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
-    vtkDataObject* mesh = meshInfo->Get(vtkDataObject::DATA_OBJECT());
-    const pisurf::Piece asked = pisurf::PieceOf(primitivesInfo);
-    in.SkipMesh = executive && mesh && in.MeshDims[0] > 0 &&
-      mesh->GetUpdateTime() > executive->GetPipelineMTime() && in.MeshPiece.Piece == asked.Piece &&
-      in.MeshPiece.Pieces == asked.Pieces;
-  }
-  if (in.SkipMesh)
-  {
-    meshInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-  }
-  if (in.SkipPrimitives)
-  {
-    primitivesInfo->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-  }
+  const pisurf::PortsNotGenerated marks = pisurf::MarkPortsNotGenerated(
+    this, request, outputs, this->PrimitivesOnDemand, in.MeshDims[0] > 0, in.MeshPiece);
+  in.SkipMesh = marks.Mesh;
+  in.SkipPrimitives = marks.Primitives;
 }
 
 vtkMTimeType vtkPiFlyingEdges::GetMTime()
@@ -166,52 +137,12 @@ bool vtkPiFlyingEdges::ComputeGrid(const double b[6], int dims[3], double spacin
 bool vtkPiFlyingEdges::ComputeGrid(
   const double b[6], int resolution, int dims[3], double spacing[3])
 {
-  const double side[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
-  const int* sd = this->SampleDimensions;
-  // Points per axis as doubles: checked against the cap before any cast to int.
-  double points[3];
-  if (sd[0] != 0 || sd[1] != 0 || sd[2] != 0)
+  std::string error;
+  if (!pisurf::ComputeMeshingGrid(
+        b, resolution, this->SampleDimensions, this->MaximumNumberOfSamples, dims, spacing, error))
   {
-    if (sd[0] < 2 || sd[1] < 2 || sd[2] < 2)
-    {
-      vtkErrorMacro(<< "SampleDimensions must be at least 2 points per axis (got " << sd[0] << ", "
-                    << sd[1] << ", " << sd[2] << "); set all to 0 to use Resolution");
-      return false;
-    }
-    std::copy(sd, sd + 3, points);
-  }
-  else
-  {
-    if (resolution < 1)
-    {
-      vtkErrorMacro(<< "Resolution must be at least 1 (got " << resolution << ")");
-      return false;
-    }
-    const double h = std::max({ side[0], side[1], side[2] }) / resolution;
-    for (int a = 0; a < 3; ++a)
-    {
-      points[a] = std::max(1.0, std::ceil(side[a] / h - 1e-9)) + 1;
-    }
-  }
-  const double samples = points[0] * points[1] * points[2];
-  if (!(samples <= static_cast<double>(this->MaximumNumberOfSamples)) ||
-    std::max({ points[0], points[1], points[2] }) > VTK_INT_MAX)
-  {
-    vtkErrorMacro(<< "A grid of " << points[0] << " x " << points[1] << " x " << points[2] << " = "
-                  << samples << " samples needs up to " << samples * sizeof(double) / (1 << 20)
-                  << " MiB; the limit is "
-                  << this->MaximumNumberOfSamples * sizeof(double) / (1 << 20)
-                  << " MiB (MaximumNumberOfSamples = " << this->MaximumNumberOfSamples
-                  << " samples)");
+    vtkErrorMacro(<< error);
     return false;
-  }
-  for (int a = 0; a < 3; ++a)
-  {
-    dims[a] = static_cast<int>(points[a]);
-  }
-  for (int a = 0; a < 3; ++a)
-  {
-    spacing[a] = side[a] / (dims[a] - 1);
   }
   return true;
 }
@@ -477,39 +408,8 @@ void vtkPiFlyingEdges::OutputPrimitives(vtkInformationVector* outputVector)
 void vtkPiFlyingEdges::MeshPrimitives(
   const double bounds[6], const int dims[3], int piece, int pieces, vtkPolyData* out)
 {
-  vtkNew<vtkAppendPolyData> append;
-  const int n = this->PiSurface->GetNumberOfFactors();
-  for (int i = 0; i < n && !this->CheckAbort(); ++i)
-  {
-    vtkNew<vtkPiSurface> alone;
-    alone->AddFactor(this->PiSurface->GetFactor(i));
-    vtkNew<vtkPiFlyingEdges> mesher;
-    // A primitive may have no real points (the paper's concavity uses the "sphere"
-    // −x²−y²−z²−0.01): its empty mesh is expected, not worth a warning.
-    vtkNew<vtkCallbackCommand> quiet;
-    mesher->AddObserver(vtkCommand::WarningEvent, quiet);
-    mesher->SetPiSurface(alone);
-    mesher->SetBounds(bounds);
-    mesher->SetSampleDimensions(dims[0], dims[1], dims[2]);
-    mesher->SetOuterEnvelope(false);
-    mesher->SetGeneratePrimitives(false);
-    mesher->SetProjectVertices(this->ProjectVertices);
-    mesher->UpdatePiece(piece, pieces, 0);
-    vtkNew<vtkPolyData> mesh;
-    mesh->ShallowCopy(mesher->GetOutput());
-    mesh->GetFieldData()->Initialize();
-    vtkDataArray* factor = mesh->GetPointData()->GetArray("Factor");
-    if (factor)
-    {
-      factor->Fill(i);
-    }
-    append->AddInputData(mesh);
-  }
-  if (n > 0)
-  {
-    append->Update();
-    out->ShallowCopy(append->GetOutput());
-  }
+  pisurf::MeshPrimitives(
+    this->PiSurface, bounds, dims, piece, pieces, this->ProjectVertices, this, out);
 }
 
 void vtkPiFlyingEdges::PrintSelf(ostream& os, vtkIndent indent)

@@ -9,6 +9,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiSurface.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
@@ -19,9 +20,8 @@ vtkStandardNewMacro(vtkPiProduct);
 vtkPiProduct::vtkPiProduct()
 {
   this->SetNumberOfInputPorts(1);
-  this->ModelText.clear();
   // The inputs show the primitives already.
-  this->GeneratePrimitives = false;
+  this->SetGeneratePrimitives(false);
 }
 
 vtkPiProduct::~vtkPiProduct() = default;
@@ -35,8 +35,7 @@ int vtkPiProduct::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkPiProduct::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkPiProduct::LoadModel(vtkInformationVector** inputVector, vtkPiSurface* surface)
 {
   const int n = inputVector[0]->GetNumberOfInformationObjects();
   std::vector<pisurf::Model> models;
@@ -53,45 +52,47 @@ int vtkPiProduct::RequestData(
                     << ") carries no PiSurfaceModel field data: connect Pi Primitive, Pi "
                        "Surface, Pi Surface Model Reader, Pi Product or Molecular Pi Surface "
                        "outputs (an invalid input also leaves its output empty)");
-      return 0;
+      return false;
     }
     pisurf::Model model;
     std::string error;
     if (!pisurf::ParseModel(json->GetValue(0), model, error))
     {
       vtkErrorMacro(<< "Input " << i + 1 << " carries an invalid PiSurfaceModel: " << error);
-      return 0;
+      return false;
     }
     models.push_back(std::move(model));
   }
   pisurf::Model product;
   std::string error;
-  if (!pisurf::MultiplyModels(models, this->Blending, product, error))
+  if (!pisurf::MultiplyModels(models, this->GetBlending(), product, error))
   {
     vtkErrorMacro(<< "Cannot form the product: " << error);
-    return 0;
+    return false;
   }
-  if (!pisurf::UnsetBounds(this->Bounds))
+  const double* bounds = this->GetBounds();
+  if (!pisurf::UnsetBounds(bounds))
   {
-    if (!pisurf::ValidBounds(this->Bounds))
+    if (!pisurf::ValidBounds(bounds))
     {
       vtkErrorMacro(<< "Bounds must be finite with x0 < x1, y0 < y1, z0 < z1 (or all 0)");
-      return 0;
+      return false;
     }
     // The output's model says where it was meshed (for the ray caster downstream).
     product.HasBounds = true;
-    std::copy(this->Bounds, this->Bounds + 6, product.Bounds);
+    std::copy(bounds, bounds + 6, product.Bounds);
   }
-  // The superclass meshes ModelText; set without Modified(): this is output, not input.
-  this->ModelText = pisurf::WriteModel(product);
-  const bool overrideBlending = this->OverrideBlending;
-  this->OverrideBlending = false;
-  const int result = this->Superclass::RequestData(request, inputVector, outputVector);
-  this->OverrideBlending = overrideBlending;
-  return result;
+  this->ProductModel = pisurf::WriteModel(product);
+  if (!surface->SetModelJSON(this->ProductModel))
+  {
+    vtkErrorMacro(<< "Invalid Model: " << surface->GetErrorMessage());
+    return false;
+  }
+  return true;
 }
 
 void vtkPiProduct::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Model: " << this->ProductModel << "\n";
 }

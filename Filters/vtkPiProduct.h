@@ -7,8 +7,9 @@
  * whose field data carries `PiSurfaceModel` (vtkPiPrimitiveSource, vtkPiSurfaceSource,
  * the model reader, another vtkPiProduct, vtkPiMoleculeSurface in Global mode),
  * multiplies all their primitives with one blending r (Blending; the inputs' own r are
- * not used) and meshes F = 0 like vtkPiSurfaceSource (Resolution, Bounds,
- * OuterEnvelope, ProjectVertices, Method, ...). The output carries the combined model
+ * not used) and meshes F = 0 with vtkPiModelMesher's settings (Resolution, Bounds,
+ * OuterEnvelope, ProjectVertices, Method, ...; OverrideBlending has no effect: Blending
+ * is the product's r). The output carries the combined model
  * as `PiSurfaceModel`, so vtkPiRayCaster and further products work downstream.
  *
  * Combining models (pisurf::MultiplyModels): primitives in input order; parameters
@@ -23,34 +24,45 @@
  *
  * GeneratePrimitives is off by default here: the inputs already show the primitives.
  *
- * @sa vtkPiPrimitiveSource vtkPiSurfaceSource vtkPiSurface
+ * @sa vtkPiModelMesher vtkPiPrimitiveSource vtkPiSurfaceSource vtkPiSurface
  */
 #ifndef vtkPiProduct_h
 #define vtkPiProduct_h
 
-#include "vtkPiSurfaceSource.h"
+#include "vtkPiModelMesher.h"
 #include "vtkPiSurfacesFiltersModule.h" // for export macro
 
-class VTKPISURFACESFILTERS_EXPORT vtkPiProduct : public vtkPiSurfaceSource
+#include <string> // for std::string
+
+class VTKPISURFACESFILTERS_EXPORT vtkPiProduct : public vtkPiModelMesher
 {
 public:
   static vtkPiProduct* New();
-  vtkTypeMacro(vtkPiProduct, vtkPiSurfaceSource);
+  vtkTypeMacro(vtkPiProduct, vtkPiModelMesher);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  // Blending (default 0.25) is the product's r; OverrideBlending has no effect here.
-  // GetModel() returns the last product's model (JSON), SetModel is not used.
+  ///@{
+  /// The model of the last execution, the product (JSON; empty before the first).
+  /// SetModel is not used: the model is the product of the inputs.
+  const char* GetModel() { return this->ProductModel.c_str(); }
+  void SetModel(const char*) {}
+  ///@}
 
 protected:
   vtkPiProduct();
   ~vtkPiProduct() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Multiplies the inputs' models with Blending as r into `surface`; false (with an
+  /// error) for no input, an input without a valid model, or a non-finite Blending.
+  bool LoadModel(vtkInformationVector** inputs, vtkPiSurface* surface) override;
+  bool CanOverrideBlending() const override { return false; }
 
 private:
   vtkPiProduct(const vtkPiProduct&) = delete;
   void operator=(const vtkPiProduct&) = delete;
+
+  std::string ProductModel;
 };
 
 #endif

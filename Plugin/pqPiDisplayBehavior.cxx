@@ -12,7 +12,7 @@
 #include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
-#include "vtkPiFlyingEdges.h"
+#include "vtkPiModelMesher.h"
 #include "vtkPiSurface.h"
 #include "vtkSMParaViewPipelineController.h"
 #include "vtkSMPropertyHelper.h"
@@ -68,7 +68,7 @@ constexpr double Palette[8][3] = { { 0.85, 0.22, 0.18 }, { 0.22, 0.42, 0.85 }, {
 // session); false otherwise.
 bool SurfaceInsidePrimitives(vtkSMProxy* producer)
 {
-  auto* mesher = vtkPiFlyingEdges::SafeDownCast(producer->GetClientSideObject());
+  auto* mesher = vtkPiModelMesher::SafeDownCast(producer->GetClientSideObject());
   vtkPiSurface* surface = mesher ? mesher->GetPiSurface() : nullptr;
   double bounds[6];
   if (!surface || surface->GetNumberOfFactors() == 0 || !surface->GetModelBounds(bounds))

@@ -32,16 +32,16 @@ int vtkPiSurfaceModelReader::CanReadFile(const char* fileName)
     text.find("\"pisurf\"") != std::string::npos;
 }
 
-bool vtkPiSurfaceModelReader::ReadModel()
+bool vtkPiSurfaceModelReader::LoadModel(vtkInformationVector**, vtkPiSurface* surface)
 {
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "No FileName given");
     return false;
   }
-  if (!this->PiSurface->LoadModel(this->FileName))
+  if (!surface->LoadModel(this->FileName))
   {
-    vtkErrorMacro(<< this->PiSurface->GetErrorMessage());
+    vtkErrorMacro(<< surface->GetErrorMessage());
     return false;
   }
   return true;

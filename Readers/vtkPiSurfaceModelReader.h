@@ -4,28 +4,28 @@
  * @brief reads a .pisurf model and meshes its Pi-surface
  *
  * Reads a .pisurf model file (JSON, version 1: Documentation/pisurf-format.md) into a
- * vtkPiSurface and meshes F = 0: it is a vtkPiSurfaceSource whose model comes from
- * FileName, so it has OverrideBlending/Blending and all the mesher's settings (Bounds,
- * Resolution, OuterEnvelope, ProjectVertices, primitives on port 1). The output carries `Normals`,
+ * vtkPiSurface and meshes F = 0: a vtkPiModelMesher whose model comes from FileName,
+ * with its settings (Method, Bounds, Resolution, OuterEnvelope, ProjectVertices,
+ * OverrideBlending/Blending, primitives on port 1). The output carries `Normals`,
  * `Factor` and the model JSON as the field-data string `PiSurfaceModel`, so downstream
  * filters can rebuild the exact function.
  *
  * A missing file, invalid JSON or an invalid model is an error that names the file and
  * the key or position; the output is then empty.
  *
- * @sa vtkPiSurfaceSource vtkPiFlyingEdges vtkPiSurface
+ * @sa vtkPiModelMesher vtkPiSurfaceSource vtkPiFlyingEdges vtkPiSurface
  */
 #ifndef vtkPiSurfaceModelReader_h
 #define vtkPiSurfaceModelReader_h
 
-#include "vtkPiSurfaceSource.h"
+#include "vtkPiModelMesher.h"
 #include "vtkPiSurfacesReadersModule.h" // for export macro
 
-class VTKPISURFACESREADERS_EXPORT vtkPiSurfaceModelReader : public vtkPiSurfaceSource
+class VTKPISURFACESREADERS_EXPORT vtkPiSurfaceModelReader : public vtkPiModelMesher
 {
 public:
   static vtkPiSurfaceModelReader* New();
-  vtkTypeMacro(vtkPiSurfaceModelReader, vtkPiSurfaceSource);
+  vtkTypeMacro(vtkPiSurfaceModelReader, vtkPiModelMesher);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -41,7 +41,8 @@ protected:
   vtkPiSurfaceModelReader();
   ~vtkPiSurfaceModelReader() override;
 
-  bool ReadModel() override;
+  /// Loads FileName into `surface`; false (with an error naming the file) if it cannot.
+  bool LoadModel(vtkInformationVector** inputs, vtkPiSurface* surface) override;
 
   char* FileName = nullptr;
 

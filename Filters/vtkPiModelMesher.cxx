@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPiModelMesher.h"
+
+#include "PiLastValidOutput.h"
+#include "PiMeshingGrid.h"
+#include "PiMeshingMethod.h"
+#include "PiPieces.h"
+#include "PiPrimitiveMeshes.h"
+#include "vtkPiSurface.h"
+
+#include "vtkDataObject.h"
+#include "vtkExecutive.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <cmath>
+#include <string>
+
+struct vtkPiModelMesher::vtkInternals
+{
+  vtkNew<vtkPiSurface> Surface;
+  std::unique_ptr<pisurf::MeshingMethod> FlyingEdges, RayCast;
+  // The ports the current REQUEST_DATA leaves as they are (DATA_NOT_GENERATED).
+  bool SkipMesh = false, SkipPrimitives = false;
+  // Whether port 0 holds a flying-edges mesh, and for which piece: port 1 alone is then
+  // meshed on its grid.
+  bool HasMesh = false;
+  pisurf::Piece MeshPiece;
+};
+
+vtkPiModelMesher::vtkPiModelMesher()
+  : LastValid(new pisurf::LastValidOutput)
+  , Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
+  this->Internals->FlyingEdges = pisurf::NewFlyingEdgesMethod(this);
+  this->Internals->RayCast = pisurf::NewRayCastTriangulationMethod(this);
+}
+
+vtkPiModelMesher::~vtkPiModelMesher() = default;
+
+vtkPiSurface* vtkPiModelMesher::GetPiSurface()
+{
+  return this->Internals->Surface;
+}
+
+bool vtkPiModelMesher::ComputeGrid(const double b[6], int dims[3], double spacing[3])
+{
+  return this->ComputeGrid(b, this->Resolution, dims, spacing);
+}
+
+bool vtkPiModelMesher::ComputeGrid(
+  const double b[6], int resolution, int dims[3], double spacing[3])
+{
+  std::string error;
+  if (!pisurf::ComputeMeshingGrid(
+        b, resolution, this->SampleDimensions, this->MaximumNumberOfSamples, dims, spacing, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+vtkTypeBool vtkPiModelMesher::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  {
+    this->MarkPortsNotGenerated(request, outputs);
+    return 1;
+  }
+  return this->LastValid->Process(request, this->KeepLastValidOutput, outputs,
+    [&]() { return this->Superclass::ProcessRequest(request, inputs, outputs); });
+}
+
+void vtkPiModelMesher::MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs)
+{
+  vtkInternals& in = *this->Internals;
+  const pisurf::PortsNotGenerated marks = pisurf::MarkPortsNotGenerated(this, request, outputs,
+    this->PrimitivesOnDemand, in.HasMesh && this->Method == FLYING_EDGES, in.MeshPiece);
+  in.SkipMesh = marks.Mesh;
+  in.SkipPrimitives = marks.Primitives;
+}
+
+int vtkPiModelMesher::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+  {
+    outputVector->GetInformationObject(port)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  }
+  return 1;
+}
+
+int vtkPiModelMesher::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInternals& in = *this->Internals;
+  // (The marks hold for this execution only.)
+  struct Unmark
+  {
+    vtkInternals& In;
+    ~Unmark() { In.SkipMesh = In.SkipPrimitives = false; }
+  } unmark{ in };
+  const bool overrideBlending = this->OverrideBlending && this->CanOverrideBlending();
+  if (overrideBlending && !std::isfinite(this->Blending))
+  {
+    vtkErrorMacro(<< "Blending must be a finite number");
+    return 0;
+  }
+  // Port 1 alone (SkipMesh) follows a successful mesh with the same settings and inputs:
+  // the surface holds its model already, and reloading it would re-mesh port 0 inside.
+  if (!in.SkipMesh)
+  {
+    in.HasMesh = false;
+    if (!this->LoadModel(inputVector, in.Surface))
+    {
+      return 0;
+    }
+    if (overrideBlending)
+    {
+      in.Surface->SetBlending(this->Blending);
+    }
+  }
+  pisurf::MeshingRequest request;
+  request.Surface = in.Surface;
+  request.Asked = pisurf::PieceOf(outputVector->GetInformationObject(in.SkipMesh ? 1 : 0));
+  request.Mesh = !in.SkipMesh;
+  request.Primitives = !in.SkipPrimitives;
+  const bool flyingEdges = this->Method == FLYING_EDGES;
+  pisurf::MeshingMethod& method = flyingEdges ? *in.FlyingEdges : *in.RayCast;
+  const int result = method.Execute(
+    request, vtkPolyData::GetData(outputVector, 0), vtkPolyData::GetData(outputVector, 1));
+  if (flyingEdges)
+  {
+    this->LastResolution = method.GetLastResolution();
+  }
+  if (request.Mesh)
+  {
+    in.HasMesh = result != 0 && method.ServesPrimitivesAlone();
+    in.MeshPiece = request.Asked;
+  }
+  return result;
+}
+
+void vtkPiModelMesher::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PiSurface: " << this->Internals->Surface.GetPointer() << "\n";
+  os << indent << "Method: " << this->Method << "\n";
+  os << indent << "OverrideBlending: " << (this->OverrideBlending ? "On" : "Off") << "\n";
+  os << indent << "Blending: " << this->Blending << "\n";
+  os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
+     << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
+     << this->Bounds[5] << ")\n";
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "SampleDimensions: (" << this->SampleDimensions[0] << ", "
+     << this->SampleDimensions[1] << ", " << this->SampleDimensions[2] << ")\n";
+  os << indent << "MaximumNumberOfSamples: " << this->MaximumNumberOfSamples << "\n";
+  os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
+  os << indent << "OuterEnvelope: " << (this->OuterEnvelope ? "On" : "Off") << "\n";
+  os << indent << "ComputeGradientMagnitude: " << (this->ComputeGradientMagnitude ? "On" : "Off")
+     << "\n";
+  os << indent << "GeneratePrimitives: " << (this->GeneratePrimitives ? "On" : "Off") << "\n";
+  os << indent << "PrimitivesOnDemand: " << (this->PrimitivesOnDemand ? "On" : "Off") << "\n";
+  os << indent << "AutomaticResolution: " << (this->AutomaticResolution ? "On" : "Off") << "\n";
+  os << indent << "MaximumAutomaticResolution: " << this->MaximumAutomaticResolution << "\n";
+  os << indent << "LastResolution: " << this->LastResolution << "\n";
+  os << indent << "KeepLastValidOutput: " << (this->KeepLastValidOutput ? "On" : "Off") << "\n";
+}
