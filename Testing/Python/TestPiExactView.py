@@ -3,6 +3,7 @@
 1. Images against baselines (Testing/Baselines/ExactView.*.png): the cup in solid
    colour (perspective), the dented cube coloured by Factor with a Cone source
    through it (parallel projection: the cone shows where it is in front).
+   Interactive renders with LOD: one depth per 4 x 4 block; still renders: every pixel.
 2. Depth: the view's Z buffer at every pixel against the depth of vtkPiRayCaster's
    CAMERA-mode first hit for the same camera and size (perspective and parallel): the
    same pixels hit, and each hit's point, unprojected from the Z buffer, within
@@ -142,6 +143,37 @@ view.ResetCamera(False)
 Render(view)
 compare(view, "cup")
 check(cup_display.Representation == "Pi Exact Surface", "the representation type is set")
+
+# Interactive renders with LOD cast one ray per n x n pixels: every 4 x 4 block of the
+# Z buffer holds one depth; still renders cast every pixel again.
+def uniform_blocks(view, n):
+    window = view.GetRenderWindow()
+    w, h = window.GetSize()
+    z = vtkFloatArray()
+    window.GetZbufferData(0, 0, w - 1, h - 1, z)
+    uniform = mixed = 0
+    for bj in range(h // n):
+        for bi in range(w // n):
+            values = {z.GetValue((n * bj + dj) * w + n * bi + di)
+                      for dj in range(n) for di in range(n)}
+            if len(values) == 1 and min(values) < 1.0:
+                uniform += 1
+            elif len(values) > 1:
+                mixed += 1
+    return uniform, mixed
+
+
+view.LODThreshold = 0.0
+cup_display.InteractiveReduction = 4
+view.InteractiveRender()
+uniform, mixed = uniform_blocks(view, 4)
+print("interactive render, 4 x 4: %d uniform blocks on the cup, %d mixed" % (uniform, mixed))
+check(uniform > 500 and mixed == 0, "an interactive render casts one ray per 4 x 4 pixels")
+Render(view)
+uniform, mixed = uniform_blocks(view, 4)
+print("still render: %d uniform blocks on the cup, %d mixed" % (uniform, mixed))
+check(mixed > 500, "a still render casts every pixel")
+view.LODThreshold = 20.0
 
 # 2. Depth of the cup, perspective and parallel.
 depth_check(view, cup_path, "cup perspective")
