@@ -56,6 +56,8 @@ def read_proxies(xml_files):
     proxies = {}
     for path in xml_files:
         for group in ET.parse(path).getroot().iter("ProxyGroup"):
+            if group.get("name") == "representations":
+                continue  # displays: ParaView gives them no help page of their own
             for element in group:
                 if not element.tag.endswith("Proxy") or not element.get("name"):
                     continue

@@ -27,6 +27,8 @@ def load(root=ROOT):
                 # <Proxy group=... name=.../> with no body only lists a proxy in another group.
                 if proxy.get("name") is None or (proxy.get("group") and len(proxy) == 0):
                     continue
+                if not proxy.tag.endswith("Proxy"):
+                    continue  # <Extension> of a ParaView proxy: no proxy of its own
                 proxies[(group.get("name"), proxy.get("name"))] = proxy
     return proxies
 
@@ -35,8 +37,10 @@ def properties(proxies, key):
     """The properties of a proxy, its base proxies' first, in the order the panel shows."""
     proxy = proxies[key]
     out = []
-    if proxy.get("base_proxyname"):
-        out = properties(proxies, (proxy.get("base_proxygroup"), proxy.get("base_proxyname")))
+    base = (proxy.get("base_proxygroup"), proxy.get("base_proxyname"))
+    # A base outside the plugin's XML is ParaView's (the Surface representation).
+    if base[1] and base in proxies:
+        out = properties(proxies, base)
     for child in proxy:
         if child.tag.endswith("Property") and child.get("name"):
             out = [p for p in out if p.get("name") != child.get("name")] + [child]

@@ -6,6 +6,8 @@
 import vtkmodules.vtkCommonCore  # noqa: F401
 import vtkmodules.vtkCommonDataModel  # noqa: F401
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401
+import vtkmodules.vtkRenderingCore  # noqa: F401
 
 from .vtkPiSurfacesFilters import *  # noqa: F401,F403
 from .vtkPiSurfacesReaders import *  # noqa: F401,F403
+from .vtkPiSurfacesRendering import *  # noqa: F401,F403

@@ -62,9 +62,11 @@ def property_names(proxies, key):
         check(False, "base proxy %s/%s not found in Plugin/**/*.xml" % key)
         return []
     names = []
-    if proxy.get("base_proxyname"):
-        names = property_names(proxies, (proxy.get("base_proxygroup"),
-                                         proxy.get("base_proxyname")))
+    base = (proxy.get("base_proxygroup"), proxy.get("base_proxyname"))
+    # A representation derives from ParaView's Surface representation, which ParaView
+    # documents; the guide names the properties the plugin adds.
+    if base[1] and base[0] != "representations":
+        names = property_names(proxies, base)
     for child in proxy:
         if child.tag.endswith("Property") and child.get("name") and child.get("name") not in names:
             names.append(child.get("name"))

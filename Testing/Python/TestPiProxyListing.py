@@ -113,7 +113,12 @@ def listing():
     for group, name in sorted(keys):
         if group.startswith("internal_"):
             continue
-        definition = definitions.GetCollapsedProxyDefinition(group, name, None, False)
+        # A representation derives from ParaView's Surface representation: only what
+        # the plugin's XML adds is listed, so the listing does not change with ParaView.
+        if group == "representations":
+            definition = definitions.GetProxyDefinition(group, name)
+        else:
+            definition = definitions.GetCollapsedProxyDefinition(group, name, None, False)
         if definition is None:
             continue
         definition = parsed(definition)
@@ -150,7 +155,7 @@ def listing():
             if prop is not None:
                 lines.append(value_line(prop, "    "))
                 lines += domain_lines(prop, "    ")
-        if proxy is not None:
+        if proxy is not None and group != "representations":
             # Every property the proxy has is one of the definition's.
             own = {p.get("name") for p in properties}
             iterator = proxy.NewPropertyIterator()

@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPiExactSurfaceRepresentation.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataObject.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODActor.h"
+#include "vtkPVRenderView.h"
+#include "vtkPiExactSurfaceMapper.h"
+#include "vtkPolyData.h"
+
+vtkStandardNewMacro(vtkPiExactSurfaceRepresentation);
+
+vtkPiExactSurfaceRepresentation::vtkPiExactSurfaceRepresentation()
+{
+  // The superclass's mappers give way to the exact ones; SetupDefaults connects them.
+  this->Mapper->Delete();
+  this->LODMapper->Delete();
+  vtkPiExactSurfaceMapper* still = vtkPiExactSurfaceMapper::New();
+  vtkPiExactSurfaceMapper* lod = vtkPiExactSurfaceMapper::New();
+  for (vtkPiExactSurfaceMapper* mapper : { still, lod })
+  {
+    mapper->SetWarnMissingModel(false);
+    mapper->SetModelData(this->ModelCarrier);
+  }
+  lod->SetReductionFactor(2);
+  this->Mapper = still;
+  this->LODMapper = lod;
+  this->SetupDefaults();
+}
+
+vtkPiExactSurfaceRepresentation::~vtkPiExactSurfaceRepresentation() = default;
+
+vtkPiExactSurfaceMapper* vtkPiExactSurfaceRepresentation::GetExactMapper()
+{
+  return static_cast<vtkPiExactSurfaceMapper*>(this->Mapper);
+}
+
+void vtkPiExactSurfaceRepresentation::SetMarkSingular(bool mark)
+{
+  static_cast<vtkPiExactSurfaceMapper*>(this->Mapper)->SetMarkSingular(mark);
+  static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->SetMarkSingular(mark);
+}
+
+bool vtkPiExactSurfaceRepresentation::GetMarkSingular()
+{
+  return this->GetExactMapper()->GetMarkSingular();
+}
+
+void vtkPiExactSurfaceRepresentation::SetInteractiveReduction(int n)
+{
+  static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->SetReductionFactor(n);
+}
+
+int vtkPiExactSurfaceRepresentation::GetInteractiveReduction()
+{
+  return static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->GetReductionFactor();
+}
+
+int vtkPiExactSurfaceRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+    ? vtkDataObject::GetData(inputVector[0], 0)
+    : nullptr;
+  vtkFieldData* model = vtkPiExactSurfaceMapper::FindModelFieldData(input);
+  if (model)
+  {
+    this->ModelCarrier->GetFieldData()->ShallowCopy(model);
+    this->WarnedProducer = nullptr;
+  }
+  else
+  {
+    this->ModelCarrier->GetFieldData()->Initialize();
+    vtkAlgorithm* producer =
+      this->GetNumberOfInputConnections(0) > 0 ? this->GetInputAlgorithm(0, 0) : nullptr;
+    // ParaView's pass-through vtkPVPostFilter stands between a source and its displays.
+    while (producer && producer->IsA("vtkPVPostFilter") && producer->GetNumberOfInputPorts() > 0 &&
+      producer->GetNumberOfInputConnections(0) > 0)
+    {
+      producer = producer->GetInputAlgorithm(0, 0);
+    }
+    if (input && producer != this->WarnedProducer)
+    {
+      vtkWarningMacro("Pi Exact Surface: the output of "
+        << (producer ? producer->GetClassName() : "the source")
+        << " has no PiSurfaceModel field data (it is not a Pi-surface); the representation "
+           "draws nothing.");
+      this->WarnedProducer = producer;
+    }
+  }
+  this->ModelCarrier->Modified();
+  return 1;
+}
+
+int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // Every rendering process casts its rows of the view, so the view renders on all
+    // of them and composites by depth.
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    const bool lod = this->Actor->GetEnableLOD() != 0;
+    const bool distributed = view &&
+      (lod ? view->GetUseDistributedRenderingForLODRender()
+           : view->GetUseDistributedRenderingForRender());
+    int piece = 0, pieces = 1;
+    if (distributed && controller && controller->GetNumberOfProcesses() > 1)
+    {
+      piece = controller->GetLocalProcessId();
+      pieces = controller->GetNumberOfProcesses();
+    }
+    for (vtkMapper* mapper : { this->Mapper, this->LODMapper })
+    {
+      static_cast<vtkPiExactSurfaceMapper*>(mapper)->SetPiece(piece);
+      static_cast<vtkPiExactSurfaceMapper*>(mapper)->SetNumberOfPieces(pieces);
+    }
+  }
+  return 1;
+}
+
+void vtkPiExactSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "MarkSingular: " << this->GetMarkSingular() << "\n";
+  os << indent << "InteractiveReduction: " << this->GetInteractiveReduction() << "\n";
+}

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkPiExactSurfaceRepresentation
+ * @brief ParaView's "Pi Exact Surface" representation: the surface ray-cast per pixel
+ *
+ * A vtkGeometryRepresentationWithFaces (the Surface representation's class) whose mapper and LOD
+ * mapper are vtkPiExactSurfaceMapper: everything else (colouring, the property, delivery, bounds,
+ * LOD decisions) is the Surface representation's. The mappers cast the model of the input's field
+ * data `PiSurfaceModel` (a copy of the input's field data taken at each update), so an edit of the
+ * model re-casts without a mesh ever being drawn. The LOD mapper, drawn when the view renders
+ * interactively with LOD (vtkPVRenderView::USE_LOD), casts one ray per InteractiveReduction ×
+ * InteractiveReduction pixels.
+ *
+ * An input without a model is reported once (a warning naming the input's producer)
+ * and draws nothing. In parallel, rank p of n casts the rows [h·p/n, h·(p+1)/n) of the
+ * view and ParaView's depth compositing assembles the image.
+ */
+#ifndef vtkPiExactSurfaceRepresentation_h
+#define vtkPiExactSurfaceRepresentation_h
+
+#include "vtkGeometryRepresentationWithFaces.h"
+#include "vtkPiSurfacesRepresentationsModule.h" // for export macro
+
+#include "vtkNew.h" // for vtkNew
+
+class vtkPiExactSurfaceMapper;
+class vtkPolyData;
+
+class VTKPISURFACESREPRESENTATIONS_EXPORT vtkPiExactSurfaceRepresentation
+  : public vtkGeometryRepresentationWithFaces
+{
+public:
+  static vtkPiExactSurfaceRepresentation* New();
+  vtkTypeMacro(vtkPiExactSurfaceRepresentation, vtkGeometryRepresentationWithFaces);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Paint the pixels whose hit is singular red (default off).
+  void SetMarkSingular(bool mark);
+  bool GetMarkSingular();
+
+  /// One ray per n × n pixels in interactive (LOD) renders (1 to 16, default 2).
+  void SetInteractiveReduction(int n);
+  int GetInteractiveReduction();
+
+  /// The mapper of still renders (for tests: its cast count and timing).
+  vtkPiExactSurfaceMapper* GetExactMapper();
+
+  int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+
+protected:
+  vtkPiExactSurfaceRepresentation();
+  ~vtkPiExactSurfaceRepresentation() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkNew<vtkPolyData> ModelCarrier; // the input's field data
+  void* WarnedProducer = nullptr;   // the producer last warned about
+
+private:
+  vtkPiExactSurfaceRepresentation(const vtkPiExactSurfaceRepresentation&) = delete;
+  void operator=(const vtkPiExactSurfaceRepresentation&) = delete;
+};
+
+#endif

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkPiExactSurfaceMapper
+ * @brief draws a Pi-surface by casting one ray per pixel at every render
+ *
+ * The exact view: at each render, the mapper casts the rays of the renderer's viewport
+ * (its tiled size, the active camera, perspective or parallel) with vtkPiRayCaster in
+ * CAMERA mode, first hits only, and draws the hits as one full-viewport quad whose
+ * fragment shader writes each hit's colour and its depth (gl_FragDepth: the hit point
+ * through the camera's composite projection matrix), so that the surface composites by
+ * depth with every other prop of the renderer. Pixels whose ray misses are discarded.
+ *
+ * The surface is the model of the field data `PiSurfaceModel` (and, for a molecule,
+ * its `PiMolecule*` arrays) of ModelData when set, else of the mapper's input (a data
+ * set, or the first leaf of a composite data set that has the model). Without a model
+ * the mapper draws nothing and, when WarnMissingModel is on, warns once per input.
+ *
+ * Shading happens on the CPU with the renderer's lights (switched-on lights, taken as
+ * directional from their transformed position to their focal point; two-sided):
+ * ambient, diffuse and a Blinn-Phong highlight from the actor's property (Ambient,
+ * Diffuse, Specular, SpecularPower, SpecularColor, Opacity). The diffuse colour is the
+ * property's colour, or, when scalar visibility is on and the selected colour array is
+ * `Factor`, the lookup table's colour of the primitive each hit lies on (the table's
+ * range is the mapper's ScalarRange unless UseLookupTableScalarRange is on).
+ * MarkSingular paints hits the caster classifies singular in red.
+ *
+ * ReductionFactor r > 1 casts one ray per r × r pixels and fills the blocks (for
+ * interactive renders). A viewport whose full cast would exceed the caster's memory cap
+ * is cast at the smallest reduction that fits (with one warning). Piece/NumberOfPieces
+ * cast only the rows [h·piece/n, h·(piece+1)/n) of the image (vtkPiRayCaster's pieces),
+ * for parallel rendering with depth compositing.
+ *
+ * The cast and the images are kept while the camera, the viewport, the model and the
+ * settings stay the same; a render then only colours and draws them again.
+ *
+ * @sa vtkPiRayCaster
+ */
+#ifndef vtkPiExactSurfaceMapper_h
+#define vtkPiExactSurfaceMapper_h
+
+#include "vtkMapper.h"
+#include "vtkPiSurfacesRenderingModule.h" // for export macro
+
+#include <memory> // for std::unique_ptr
+
+class vtkFieldData;
+class vtkPiRayCaster;
+
+class VTKPISURFACESRENDERING_EXPORT vtkPiExactSurfaceMapper : public vtkMapper
+{
+public:
+  static vtkPiExactSurfaceMapper* New();
+  vtkTypeMacro(vtkPiExactSurfaceMapper, vtkMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(vtkRenderer* ren, vtkActor* actor) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+  using vtkMapper::GetBounds;
+  double* GetBounds() VTK_SIZEHINT(6) override;
+
+  ///@{
+  /// The data object whose field data holds the model; null (default) = the input.
+  void SetModelData(vtkDataObject* data);
+  vtkGetObjectMacro(ModelData, vtkDataObject);
+  ///@}
+
+  ///@{
+  /// One ray per ReductionFactor × ReductionFactor pixels (1 to 16, default 1).
+  vtkSetClampMacro(ReductionFactor, int, 1, 16);
+  vtkGetMacro(ReductionFactor, int);
+  ///@}
+
+  ///@{
+  /// Paint singular hits red (default off).
+  vtkSetMacro(MarkSingular, bool);
+  vtkGetMacro(MarkSingular, bool);
+  vtkBooleanMacro(MarkSingular, bool);
+  ///@}
+
+  ///@{
+  /// Warn once per input that has no model (default on).
+  vtkSetMacro(WarnMissingModel, bool);
+  vtkGetMacro(WarnMissingModel, bool);
+  ///@}
+
+  ///@{
+  /// This process casts the rows of piece Piece of NumberOfPieces (default 0 of 1).
+  vtkSetClampMacro(Piece, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Piece, int);
+  vtkSetClampMacro(NumberOfPieces, int, 1, VTK_INT_MAX);
+  vtkGetMacro(NumberOfPieces, int);
+  ///@}
+
+  /// The field data of `data`, or of the first leaf of a composite `data`, that holds
+  /// the field-data string `PiSurfaceModel`; null if none does.
+  static vtkFieldData* FindModelFieldData(vtkDataObject* data);
+
+  /// The ray caster the mapper runs (its settings other than the camera, the
+  /// resolution, the view mode and AllHits may be changed, e.g. SingularTolerance).
+  vtkPiRayCaster* GetRayCaster();
+
+  /// How many casts the mapper has run, and the wall-clock seconds of the last one.
+  vtkGetMacro(CastCount, int);
+  vtkGetMacro(LastCastSeconds, double);
+  /// The resolution of the last cast (w, h rays).
+  vtkGetVector2Macro(CastResolution, int);
+  /// Whether the last render found a model and drew it.
+  vtkGetMacro(Drawn, bool);
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPiExactSurfaceMapper();
+  ~vtkPiExactSurfaceMapper() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void ReportReferences(vtkGarbageCollector* collector) override;
+
+  vtkDataObject* ModelData = nullptr;
+  int ReductionFactor = 1;
+  bool MarkSingular = false;
+  bool WarnMissingModel = true;
+  int Piece = 0;
+  int NumberOfPieces = 1;
+  int CastCount = 0;
+  double LastCastSeconds = 0.0;
+  int CastResolution[2] = { 0, 0 };
+  bool Drawn = false;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
+  vtkPiExactSurfaceMapper(const vtkPiExactSurfaceMapper&) = delete;
+  void operator=(const vtkPiExactSurfaceMapper&) = delete;
+};
+
+#endif

@@ -1,0 +1,63 @@
+"""Frame times of the exact view (vtkPiExactSurfaceMapper) at 1280 x 800.
+
+Usage: pvpython Scripts/exactview_benchmark.py MODELS_DIR [FRAMES]
+
+Each frame turns the camera by 1 degree (so every frame casts again) and times
+vtkRenderWindow::Render: the cast, the shading and the drawing. Full resolution
+(ReductionFactor 1, a still render) and one ray per 2 x 2 and 4 x 4 pixels (the
+interactive renders). The cup model and the cube with its dent; vtkSMPTools' threads.
+The best and the median of FRAMES frames (default 10)."""
+import os
+import statistics
+import sys
+import time
+
+from pisurfaces import vtkPiExactSurfaceMapper, vtkPiSurfaceModelReader
+from vtkmodules.vtkCommonCore import vtkSMPTools
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+
+models = sys.argv[1]
+frames = int(sys.argv[2]) if len(sys.argv) > 2 else 10
+vtkSMPTools.SetBackend("STDThread")
+
+
+def measure(name, reduction):
+    reader = vtkPiSurfaceModelReader()
+    reader.SetFileName(os.path.join(models, name))
+    reader.SetResolution(8)
+    reader.Update()
+    mapper = vtkPiExactSurfaceMapper()
+    mapper.SetInputConnection(reader.GetOutputPort())
+    mapper.SetReductionFactor(reduction)
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(1280, 800)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    renderer.GetActiveCamera().Elevation(25)
+    window.Render()
+    times = []
+    for _ in range(frames):
+        renderer.GetActiveCamera().Azimuth(1.0)
+        renderer.ResetCameraClippingRange()
+        t0 = time.perf_counter()
+        window.Render()
+        times.append(time.perf_counter() - t0)
+    return min(times), statistics.median(times), mapper.GetCastResolution()
+
+
+print("Exact view frame time at 1280 x 800 (%s, %d threads), %d frames"
+      % (vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads(), frames))
+print("| model | rays per pixel | cast | best | median |")
+print("|---|---|---|---|---|")
+for model in ("cup_a1.0.pisurf", "rounded_cube_sphere_2.pisurf"):
+    for reduction in (1, 2, 4):
+        best, median, cast = measure(model, reduction)
+        print("| %s | 1/%d | %d x %d | %.1f ms | %.1f ms |" % (
+            model, reduction * reduction, cast[0], cast[1], 1e3 * best, 1e3 * median))
+        sys.stdout.flush()
