@@ -240,8 +240,7 @@ public:
   /// With GeneratePrimitives: compute port 1 only when port 1 itself is updated
   /// (`Update(1)`, a consumer's request from port 1), not when port 0 is. Off by default
   /// (a VTK mapper updates its input algorithm's first port whichever port it shows,
-  /// and `Update()` then `GetOutput(1)` expects both). ParaView's proxies do not expose
-  /// it: ParaView's Show updates every output port of a source.
+  /// and `Update()` then `GetOutput(1)` expects both).
   vtkSetMacro(PrimitivesOnDemand, bool);
   vtkGetMacro(PrimitivesOnDemand, bool);
   vtkBooleanMacro(PrimitivesOnDemand, bool);

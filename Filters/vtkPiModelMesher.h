@@ -144,7 +144,8 @@ public:
 
   ///@{
   /// With GeneratePrimitives: compute port 1 only when port 1 itself is updated (default
-  /// off).
+  /// off; on in ParaView's proxies, whose server side, vtkPiSIOnDemandSourceProxy,
+  /// updates port 1 only for a visible or filtering consumer).
   vtkSetMacro(PrimitivesOnDemand, bool);
   vtkGetMacro(PrimitivesOnDemand, bool);
   vtkBooleanMacro(PrimitivesOnDemand, bool);
