@@ -2,8 +2,8 @@
 
     pvpython default_path_benchmark.py MODELS_DIR [RESOLUTION]    (./run bench; 255)
 
-For the ten spheres, the table and the cup at RESOLUTION cells along the longest side
-(255: 256 grid points), STDThread backend, measured side by side in one run (best of 5,
+For the ten spheres, the table and the cup in a cube about the model's bounds at
+RESOLUTION cells per side (255: a 256^3 grid), STDThread backend, measured side by side in one run (best of 5,
 taking turns; see benchmark.py): a new proxy each time, updated as ParaView's Show and
 UpdatePipeline update it (every output port through the server manager):
   defaults      Pi Surface (the model as JSON text) and Pi Surface Model Reader at
@@ -55,8 +55,14 @@ def main():
           "defaults / no primitives | SampleFunction+FlyingEdges3D | VTK / defaults |")
     print("|---|---|---|---|---|---|---|---|---|")
     for name, surface, path in cases:
-        bounds = [0.0] * 6
-        surface.GetModelBounds(bounds)
+        box = [0.0] * 6
+        surface.GetModelBounds(box)
+        # A cube about the model's bounds: RESOLUTION + 1 points on every axis (256^3).
+        half = max(box[2 * k + 1] - box[2 * k] for k in range(3)) / 2
+        bounds = []
+        for k in range(3):
+            middle = (box[2 * k] + box[2 * k + 1]) / 2
+            bounds += [middle - half, middle + half]
         dims, spacing = [0, 0, 0], [0.0, 0.0, 0.0]
         vtkPiFlyingEdges().ComputeGrid(bounds, resolution, dims, spacing)
         sample = vtkSampleFunction()
