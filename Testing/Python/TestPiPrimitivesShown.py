@@ -79,26 +79,17 @@ UpdatePipeline(proxy=clip)
 check(clip.GetDataInformation().GetNumberOfCells() > 0, "a filter on the port gets primitives")
 
 # Pi Surface and Pi Product behave alike.
-surface = PiSurface()
-surface.Resolution = 48
-Show(surface, view)
-Render(view)
-check(cells(surface, 0) > 0 and cells(surface, 1) == 0,
-      "Show(Pi Surface): only the Pi-surface is meshed")
-Show(OutputPort(surface, 1), view)
-Render(view)
-check(cells(surface, 1) > 0, "Pi Surface: the shown Primitives port is meshed")
-
-product = PiProduct(Input=[PiPrimitive(), PiPrimitive(Center=[1.5, 0, 0])])
-product.GeneratePrimitives = 1
-product.Resolution = 48
-Show(product, view)
-Render(view)
-check(cells(product, 0) > 0 and cells(product, 1) == 0,
-      "Show(Pi Product): only the Pi-surface is meshed")
-Show(OutputPort(product, 1), view)
-Render(view)
-check(cells(product, 1) > 0, "Pi Product: the shown Primitives port is meshed")
+others = (("Pi Surface", PiSurface(Resolution=48)),
+          ("Pi Product", PiProduct(Input=[PiPrimitive(), PiPrimitive(Center=[1.5, 0, 0])],
+                                   GeneratePrimitives=1, Resolution=48)))
+for label, source in others:
+    Show(source, view)
+    Render(view)
+    check(cells(source, 0) > 0 and cells(source, 1) == 0,
+          "Show(%s): only the Pi-surface is meshed" % label)
+    Show(OutputPort(source, 1), view)
+    Render(view)
+    check(cells(source, 1) > 0, "%s: the shown Primitives port is meshed" % label)
 
 # pvpython crashes in sys.exit() after a render (its render view's OpenGL context is
 # released after the X connection): on success the script just ends.
