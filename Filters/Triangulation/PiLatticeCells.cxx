@@ -167,9 +167,11 @@ void LatticeCells::Rows(vtkIdType jb, vtkIdType je)
   for (vtkIdType jj = jb; jj < je && !T.Aborted(); ++jj)
   {
     const int j = static_cast<int>(jj);
-    if (pisurf::SingleThread())
+    const double progress = 0.3 + 0.6 * j / (ny - 1);
+    if (pisurf::SingleThread() && progress > this->ReportedProgress)
     {
-      T.Algorithm->UpdateProgress(0.3 + 0.6 * j / (ny - 1));
+      this->ReportedProgress = progress;
+      T.Algorithm->UpdateProgress(progress);
     }
     if (jj == jb)
     {

@@ -64,6 +64,9 @@ private:
   const LatticeLines& Lines;
   // Nodes per axis: the pixel centres and the two planes of the box.
   const int nx, ny, nz;
+  // The largest progress reported: the reporting thread takes its chunks of rows in no
+  // particular order, and only a larger value is reported, so progress never goes back.
+  double ReportedProgress = 0.0;
   // Per face of the box: its sign if certified constant, else −1.
   int FaceSign[6];
   const std::array<std::vector<std::vector<int>>, 256>& Polygons;

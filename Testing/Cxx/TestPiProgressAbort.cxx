@@ -91,7 +91,12 @@ int Check(const char* name, vtkPolyDataAlgorithm* algorithm, double late = 0.0)
     watch.CancelAt = late;
     algorithm->Modified();
     algorithm->Update();
-    PI_CHECK(algorithm->GetOutput()->GetNumberOfCells() == 0);
+    // The cancel happens only if a report in [late, 1) came before the end: the last
+    // pass reports from one thread at the start of its chunks, and how many chunks
+    // that thread gets, and when, depends on the scheduler and the machine's load.
+    const bool cancelled = std::any_of(
+      watch.Values.begin(), watch.Values.end(), [late](double v) { return v >= late && v < 1.0; });
+    PI_CHECK(!cancelled || algorithm->GetOutput()->GetNumberOfCells() == 0);
   }
 
   // The cancel cleared, the next run is whole again.
