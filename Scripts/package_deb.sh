@@ -48,8 +48,9 @@ stage="$work/stage"
 mkdir -p "$stage$plugin_dir/PiSurfaces" "$stage/usr/lib/$multiarch" \
   "$stage/usr/lib/python3/dist-packages/pisurfaces" "$stage/usr/bin" "$stage/DEBIAN" \
   "$stage/usr/share/doc/pisurfaces"
-# The plugin and the libraries of our two VTK modules (sonames in the linker's path).
-cp "$work/install/lib/paraview-plugins/PiSurfaces/PiSurfaces.so" "$stage$plugin_dir/PiSurfaces/"
+# The plugin with its own module's library beside it (found through the plugin's
+# RUNPATH $ORIGIN), and the libraries of our VTK modules (sonames in the linker's path).
+cp "$work/install/lib/paraview-plugins/PiSurfaces/"*.so "$stage$plugin_dir/PiSurfaces/"
 cp -P "$work/install/lib/"libvtkPiSurfaces*.so.* "$stage/usr/lib/$multiarch/"
 cat >"$stage$plugin_dir/PiSurfaces/PiSurfaces.plugins.xml" <<XML
 <?xml version="1.0"?>
@@ -71,7 +72,7 @@ cp "$SRC/README.md" "$stage/usr/share/doc/pisurfaces/README.md"
 mkdir -p "$work/shlibs/debian"
 printf 'Source: pisurfaces\n\nPackage: pisurfaces\nArchitecture: any\n' >"$work/shlibs/debian/control"
 mapfile -t elves < <(find "$stage" -name '*.so*' -type f)
-shlibs="$(cd "$work/shlibs" && dpkg-shlibdeps -O -l"$stage/usr/lib/$multiarch" "${elves[@]}" 2>/dev/null |
+shlibs="$(cd "$work/shlibs" && dpkg-shlibdeps -O -l"$stage/usr/lib/$multiarch" -l"$stage$plugin_dir/PiSurfaces" "${elves[@]}" 2>/dev/null |
   sed -n 's/^shlibs:Depends=//p')"
 # A plugin loads only into the ParaView it was built against: pin the exact version.
 depends="paraview (= $pv_version), python3-paraview (= $pv_version)${shlibs:+, $shlibs}"
