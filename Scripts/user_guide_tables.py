@@ -55,13 +55,28 @@ def clean(text):
     return re.sub(r"\s+", " ", (text or "").strip())
 
 
+def entries(enum):
+    """(value, text) of an enumeration. The Pi Primitive's Type enumeration is empty in the
+    source (PiCatalogueXML fills it in from the primitive catalogue at build time): its
+    entries come from the built pisurfaces module when it is importable."""
+    found = [(e.get("value"), e.get("text")) for e in enum.iter("Entry")]
+    if found:
+        return found
+    try:
+        import json
+        from pisurfaces import vtkPiPrimitive
+    except ImportError:
+        return [("0", "(the primitive catalogue's labels: set PYTHONPATH to build/lib/python)")]
+    return [(str(t["type"]), t["label"]) for t in json.loads(vtkPiPrimitive.GetCatalogueJSON())]
+
+
 def default_of(prop):
     default = prop.get("default_values")
     if default is None or default == "":
         return "—"
     enum = prop.find("EnumerationDomain")
     if enum is not None:
-        names = {e.get("value"): e.get("text") for e in enum}
+        names = dict(entries(enum))
         return " ".join(names.get(v, v) for v in default.split())
     if prop.find("BooleanDomain") is not None:
         return {"0": "off", "1": "on"}.get(default, default)
@@ -77,7 +92,7 @@ def table(proxies, key):
         text = clean(doc.text if doc is not None else "").replace("|", "\\|")
         enum = prop.find("EnumerationDomain")
         if enum is not None:
-            text += " Values: " + ", ".join("`%s`" % e.get("text") for e in enum) + "."
+            text += " Values: " + ", ".join("`%s`" % t for _, t in entries(enum)) + "."
         visibility = prop.get("panel_visibility")
         if visibility == "advanced":
             text += " *(advanced)*"

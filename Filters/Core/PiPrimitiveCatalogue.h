@@ -8,7 +8,9 @@
  * (PiPrimitiveSpec.cxx: the constraints, then the entry's polynomial), vtkPiPrimitive's
  * defaults and IsBounded, vtkPiPrimitiveSource's automatic box, the Qt editor's field
  * table and row summary (pqPiPrimitiveListWidget), the 3D widget of the editor
- * (pqPiPrimitive3DWidget) and of the Pi Primitive panel (pqPiPrimitivePlacementWidget).
+ * (pqPiPrimitive3DWidget) and of the Pi Primitive panel (pqPiPrimitivePlacementWidget),
+ * and the build tool Plugin/XML/PiCatalogueXML.cxx, which writes the Pi Primitive
+ * proxy's Type enumeration and the types of its visibility decorators into the XML.
  * Testing/Core/TestPiPrimitiveCatalogue.cxx checks the catalogue's own consistency and
  * Testing/Python/TestPiPrimitiveCatalogue.py checks the ParaView XML and
  * Documentation/pisurf-format.md against it (vtkPiPrimitive::GetCatalogueJSON).

@@ -1,12 +1,14 @@
 """The ParaView XML and the format's documentation against the primitive catalogue.
 
-    python3 TestPiPrimitiveCatalogue.py SOURCE_DIR
+    python3 TestPiPrimitiveCatalogue.py SOURCE_DIR PICATALOGUEXML
 
 The catalogue (Filters/Core/PiPrimitiveCatalogue.h, read here through
 vtkPiPrimitive.GetCatalogueJSON()) is the single source of truth of the primitive
 types. What cannot iterate it, because ParaView reads it as static text, is checked:
 
-1. The Pi Primitive proxy (in any XML file under Plugin/, Plugin/**/*.xml): its `Type`
+1. The Pi Primitive proxy (in any XML file under Plugin/, Plugin/**/*.xml, as ParaView
+   gets it: a file with catalogue markers is first filled in by the build tool
+   PICATALOGUEXML, Plugin/XML/PiCatalogueXML.cxx, as the plugin's build does): its `Type`
    enumeration holds exactly the catalogue's types, value = index, text = label, in
    order; every parameter of the catalogue is a property of the proxy with enough
    elements and the catalogue's default; a parameter shown only for some types
@@ -21,7 +23,9 @@ import glob
 import json
 import os
 import re
+import subprocess
 import sys
+import tempfile
 import xml.etree.ElementTree as ET
 
 from pitesting import check, finish
@@ -29,6 +33,7 @@ from pitesting import check, finish
 from pisurfaces import vtkPiPrimitive
 
 SOURCE = os.path.abspath(sys.argv[1])
+GENERATOR = sys.argv[2]
 CATALOGUE = json.loads(vtkPiPrimitive.GetCatalogueJSON())
 
 check(len(CATALOGUE) == vtkPiPrimitive.GetNumberOfTypes(), "GetNumberOfTypes disagrees")
@@ -48,7 +53,19 @@ def primitive_proxies():
     check(files, "no XML file under %s/Plugin" % SOURCE)
     found = []
     for path in files:
-        for group in ET.parse(path).getroot().iter("ProxyGroup"):
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        if "@PrimitiveTypes@" in text or "@TypesWith:" in text:
+            with tempfile.TemporaryDirectory() as tmp:
+                filled = os.path.join(tmp, os.path.basename(path))
+                run = subprocess.run([GENERATOR, path, filled], capture_output=True, text=True)
+                check(run.returncode == 0, "%s %s: %s" % (GENERATOR, path, run.stderr.strip()))
+                if run.returncode != 0:
+                    continue
+                root = ET.parse(filled).getroot()
+        else:
+            root = ET.fromstring(text)
+        for group in root.iter("ProxyGroup"):
             for proxy in group:
                 if proxy.get("name") == "PiPrimitive" and len(proxy):
                     found.append((os.path.relpath(path, SOURCE), proxy))
