@@ -6,16 +6,23 @@
 #include "PiMeshingMethod.h"
 #include "PiPieces.h"
 #include "PiPrimitiveMeshes.h"
+#include "RayCasting/PiRayPointOutput.h"
 #include "vtkPiSurface.h"
 
 #include "vtkDataObject.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+#include <dlfcn.h>
 #include <cmath>
 #include <string>
 
@@ -29,7 +36,50 @@ struct vtkPiModelMesher::vtkInternals
   // meshed on its grid.
   bool HasMesh = false;
   pisurf::Piece MeshPiece;
+  // Whether port 0 holds the model alone.
+  bool ModelOnly = false;
 };
+
+namespace
+{
+// MODEL_ONLY(): copied upstream with the update request (vtkInformationIntegerRequestKey).
+// An algorithm re-executes for it only when the mesh is asked for (0) and its output
+// holds the model alone (the field data PiModelOnly): a mesh serves a model-only request,
+// and the pass-through filters between the mesher and its consumers (ParaView's post
+// filter) re-execute, and so forward the request, exactly when the mesher must.
+class ModelOnlyRequestKey : public vtkInformationIntegerRequestKey
+{
+public:
+  ModelOnlyRequestKey(const char* name, const char* location)
+    : vtkInformationIntegerRequestKey(name, location)
+  {
+  }
+  bool NeedToExecute(vtkInformation* pipelineInfo, vtkInformation*) override
+  {
+    vtkDataObject* data = pipelineInfo->Get(vtkDataObject::DATA_OBJECT());
+    return pipelineInfo->Get(this) == 0 && data && data->GetFieldData() &&
+      data->GetFieldData()->GetAbstractArray("PiModelOnly");
+  }
+  void StoreMetaData(vtkInformation*, vtkInformation*, vtkInformation*) override {}
+};
+}
+
+vtkInformationIntegerRequestKey* vtkPiModelMesher::MODEL_ONLY()
+{
+  static vtkInformationIntegerRequestKey* key = []()
+  {
+    // VTK's key manager (which the key's constructor registers it with) deletes the key
+    // when VTK's library is finalized. This library, which holds the key's class, must
+    // still be loaded then: a plugin that brought it in may be unloaded before.
+    Dl_info self;
+    if (dladdr(reinterpret_cast<void*>(&vtkPiModelMesher::MODEL_ONLY), &self) && self.dli_fname)
+    {
+      dlopen(self.dli_fname, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+    }
+    return new ModelOnlyRequestKey("MODEL_ONLY", "vtkPiModelMesher");
+  }();
+  return key;
+}
 
 vtkPiModelMesher::vtkPiModelMesher()
   : LastValid(new pisurf::LastValidOutput)
@@ -42,6 +92,11 @@ vtkPiModelMesher::vtkPiModelMesher()
 }
 
 vtkPiModelMesher::~vtkPiModelMesher() = default;
+
+bool vtkPiModelMesher::GetLastOutputModelOnly()
+{
+  return this->Internals->ModelOnly;
+}
 
 vtkPiSurface* vtkPiModelMesher::GetPiSurface()
 {
@@ -127,6 +182,18 @@ int vtkPiModelMesher::RequestData(
       in.Surface->SetBlending(this->Blending);
     }
   }
+  // The model alone when the request asks only for it and port 1 is not asked for (its
+  // primitives are meshed on the mesh's grid).
+  if (!in.SkipMesh)
+  {
+    in.ModelOnly = false;
+    vtkInformation* meshInfo = outputVector->GetInformationObject(0);
+    if ((in.SkipPrimitives || !this->GeneratePrimitives) && meshInfo->Has(MODEL_ONLY()) &&
+      meshInfo->Get(MODEL_ONLY()) == 1)
+    {
+      return this->OutputModelOnly(vtkPolyData::GetData(outputVector, 0));
+    }
+  }
   pisurf::MeshingRequest request;
   request.Surface = in.Surface;
   request.Asked = pisurf::PieceOf(outputVector->GetInformationObject(in.SkipMesh ? 1 : 0));
@@ -146,6 +213,32 @@ int vtkPiModelMesher::RequestData(
     in.MeshPiece = request.Asked;
   }
   return result;
+}
+
+int vtkPiModelMesher::OutputModelOnly(vtkPolyData* output)
+{
+  vtkInternals& in = *this->Internals;
+  double b[6];
+  if (!in.Surface->ResolveBounds(this->Bounds, b))
+  {
+    vtkErrorMacro(<< "No bounds: set Bounds, or give the model bounds or bounded primitives");
+    return 0;
+  }
+  output->Initialize();
+  vtkNew<vtkPoints> corners;
+  corners->SetDataTypeToDouble();
+  for (int k = 0; k < 8; ++k)
+  {
+    corners->InsertNextPoint(b[k & 1], b[2 + ((k >> 1) & 1)], b[4 + ((k >> 2) & 1)]);
+  }
+  output->SetPoints(corners);
+  pisurf::RayPointOutput::AddModel(*in.Surface, b, output);
+  vtkNew<vtkIntArray> flag;
+  flag->SetName("PiModelOnly");
+  flag->InsertNextValue(1);
+  output->GetFieldData()->AddArray(flag);
+  in.ModelOnly = true;
+  return 1;
 }
 
 void vtkPiModelMesher::PrintSelf(ostream& os, vtkIndent indent)
@@ -172,4 +265,5 @@ void vtkPiModelMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAutomaticResolution: " << this->MaximumAutomaticResolution << "\n";
   os << indent << "LastResolution: " << this->LastResolution << "\n";
   os << indent << "KeepLastValidOutput: " << (this->KeepLastValidOutput ? "On" : "Off") << "\n";
+  os << indent << "LastOutputModelOnly: " << (this->Internals->ModelOnly ? "yes" : "no") << "\n";
 }

@@ -28,6 +28,14 @@
  *
  * OverrideBlending (default off) replaces the model's r by Blending (default 0.25).
  *
+ * A consumer that draws the model itself (ParaView's Pi Exact Surface representation)
+ * sets MODEL_ONLY() to 1 in its request for port 0. Port 0 then holds the model alone:
+ * the field-data string `PiSurfaceModel` (with the meshing box as its bounds), the
+ * field-data integer `PiModelOnly` (1) and the box's 8 corners as points, no cells. Any
+ * request without the key, or with 0, gets the mesh: data that holds the model alone is
+ * computed again for it; a mesh serves a model-only request as it is. (Port 1, when
+ * asked for in the same request, needs the mesh's grid: the mesh is computed then.)
+ *
  * The model is loaded at each execution, so the time of the vtkPiSurface is not part of
  * this algorithm's: edit the model through the subclass (its text, file or inputs).
  *
@@ -41,6 +49,7 @@
 
 #include <memory> // for std::unique_ptr
 
+class vtkInformationIntegerRequestKey;
 class vtkPiSurface;
 
 namespace pisurf
@@ -173,6 +182,13 @@ public:
   /// The same for a given resolution.
   bool ComputeGrid(const double bounds[6], int resolution, int dims[3], double spacing[3]);
 
+  /// The request key of a consumer that needs only the model on port 0 (1), not the
+  /// mesh (0 or absent); see the class documentation.
+  static vtkInformationIntegerRequestKey* MODEL_ONLY();
+
+  /// Whether port 0 of the last execution holds the model without its mesh.
+  bool GetLastOutputModelOnly();
+
   /// Runs REQUEST_DATA through the last-valid-output guard (see KeepLastValidOutput) and
   /// answers REQUEST_DATA_NOT_GENERATED (see PrimitivesOnDemand).
   vtkTypeBool ProcessRequest(
@@ -194,6 +210,9 @@ protected:
 private:
   vtkPiModelMesher(const vtkPiModelMesher&) = delete;
   void operator=(const vtkPiModelMesher&) = delete;
+
+  // Port 0 as the model alone (the demand wants no mesh); 0 with an error without bounds.
+  int OutputModelOnly(vtkPolyData* output);
 
   // REQUEST_DATA_NOT_GENERATED: which of the two ports this execution leaves as they are.
   void MarkPortsNotGenerated(vtkInformation* request, vtkInformationVector* outputs);

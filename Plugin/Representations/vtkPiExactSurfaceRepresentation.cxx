@@ -4,13 +4,16 @@
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
+#include "vtkExecutive.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODActor.h"
 #include "vtkPVRenderView.h"
 #include "vtkPiExactSurfaceMapper.h"
+#include "vtkPiModelMesher.h"
 #include "vtkPolyData.h"
 
 vtkStandardNewMacro(vtkPiExactSurfaceRepresentation);
@@ -59,6 +62,20 @@ void vtkPiExactSurfaceRepresentation::SetInteractiveReduction(int n)
 int vtkPiExactSurfaceRepresentation::GetInteractiveReduction()
 {
   return static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->GetReductionFactor();
+}
+
+int vtkPiExactSurfaceRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    inputVector[0]->GetInformationObject(i)->Set(vtkPiModelMesher::MODEL_ONLY(), 1);
+  }
+  return 1;
 }
 
 int vtkPiExactSurfaceRepresentation::RequestData(
@@ -117,6 +134,9 @@ int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
+    // The view's updates are done. The producer's output information is shared by every
+    // consumer of that output: the next one asks for the mesh unless it says otherwise.
+    this->AskForMesh();
     auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
     const bool lod = this->Actor->GetEnableLOD() != 0;
@@ -136,6 +156,23 @@ int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
     }
   }
   return 1;
+}
+
+void vtkPiExactSurfaceRepresentation::AskForMesh()
+{
+  for (int i = 0; i < this->GetNumberOfInputConnections(0); ++i)
+  {
+    this->GetExecutive()->GetInputInformation(0, i)->Set(vtkPiModelMesher::MODEL_ONLY(), 0);
+  }
+}
+
+void vtkPiExactSurfaceRepresentation::SetVisibility(bool visible)
+{
+  if (!visible)
+  {
+    this->AskForMesh();
+  }
+  this->Superclass::SetVisibility(visible);
 }
 
 void vtkPiExactSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)

@@ -11,6 +11,12 @@
  * interactively with LOD (vtkPVRenderView::USE_LOD), casts one ray per InteractiveReduction ×
  * InteractiveReduction pixels.
  *
+ * Its update asks the producer for the model alone (vtkPiModelMesher::MODEL_ONLY() set
+ * to 1 in its request), so Pi Surface, the model reader and Pi Product compute no mesh
+ * for it. The key is set back to 0 when the view renders (its updates done) and when the
+ * representation is hidden, so that another consumer of the same output that updates
+ * later (a Surface display, a filter) gets the mesh.
+ *
  * An input without a model is reported once (a warning naming the input's producer)
  * and draws nothing. In parallel, rank p of n casts the rows [h·p/n, h·(p+1)/n) of the
  * view and ParaView's depth compositing assembles the image.
@@ -48,11 +54,18 @@ public:
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
     vtkInformation* outInfo) override;
 
+  /// Hidden, the representation asks its producer for the mesh again.
+  void SetVisibility(bool visible) override;
+
 protected:
   vtkPiExactSurfaceRepresentation();
   ~vtkPiExactSurfaceRepresentation() override;
 
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  // Sets MODEL_ONLY() back to 0 in the producer's output information.
+  void AskForMesh();
 
   vtkNew<vtkPolyData> ModelCarrier; // the input's field data
   void* WarnedProducer = nullptr;   // the producer last warned about
