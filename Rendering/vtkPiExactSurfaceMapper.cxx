@@ -82,8 +82,10 @@ vtkFieldData* vtkPiExactSurfaceMapper::FindModelFieldData(vtkDataObject* data)
   {
     return nullptr;
   }
+  // A molecule of any size or mode carries its atoms and settings (PiMoleculeSettings),
+  // which the caster reads; a Global one of few atoms carries a PiSurfaceModel too.
   vtkFieldData* fd = data->GetFieldData();
-  if (fd && fd->GetAbstractArray("PiSurfaceModel"))
+  if (fd && (fd->GetAbstractArray("PiSurfaceModel") || fd->GetAbstractArray("PiMoleculeSettings")))
   {
     return fd;
   }
@@ -225,7 +227,8 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
     if (this->WarnMissingModel && source && in.WarnedInput != source)
     {
       vtkWarningMacro("The input (" << source->GetClassName()
-                                    << ") carries no PiSurfaceModel field data: nothing to draw.");
+                                    << ") carries no PiSurfaceModel or PiMoleculeSettings field "
+                                       "data: nothing to draw.");
       in.WarnedInput = source;
     }
     return;

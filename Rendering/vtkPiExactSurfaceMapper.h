@@ -10,9 +10,10 @@
  * through the camera's composite projection matrix), so that the surface composites by
  * depth with every other prop of the renderer. Pixels whose ray misses are discarded.
  *
- * The surface is the model of the field data `PiSurfaceModel` (and, for a molecule,
- * its `PiMolecule*` arrays) of ModelData when set, else of the mapper's input (a data
- * set, or the first leaf of a composite data set that has the model). Without a model
+ * The surface is the model of the field data `PiSurfaceModel`, or for a molecule
+ * (Molecular Pi Surface in either mode) its `PiMolecule*` arrays, of ModelData when set,
+ * else of the mapper's input (a data set, or the first leaf of a composite data set that
+ * has the model). Without a model
  * the mapper draws nothing and, when WarnMissingModel is on, warns once per input.
  *
  * Shading happens on the CPU with the renderer's lights (switched-on lights, taken as
@@ -92,7 +93,8 @@ public:
   ///@}
 
   /// The field data of `data`, or of the first leaf of a composite `data`, that holds
-  /// the field-data string `PiSurfaceModel`; null if none does.
+  /// the field-data string `PiSurfaceModel` or a molecule's `PiMoleculeSettings`; null if
+  /// none does.
   static vtkFieldData* FindModelFieldData(vtkDataObject* data);
 
   /// The ray caster the mapper runs (its settings other than the camera, the

@@ -5,14 +5,17 @@ Usage: pvpython Scripts/exactview_benchmark.py MODELS_DIR [FRAMES]
 Each frame turns the camera by 1 degree (so every frame casts again) and times
 vtkRenderWindow::Render: the cast, the shading and the drawing. Full resolution
 (ReductionFactor 1, a still render) and one ray per 2 x 2 and 4 x 4 pixels (the
-interactive renders). The cup model and the cube with its dent; vtkSMPTools' threads.
+interactive renders). The cup model, the cube with its dent and ubiquitin (1ubq, 602
+atoms without waters... as freesasa's test file has them, Molecular Pi Surface in Local
+mode); vtkSMPTools' threads.
 The best and the median of FRAMES frames (default 10)."""
 import os
 import statistics
 import sys
 import time
 
-from pisurfaces import vtkPiExactSurfaceMapper, vtkPiSurfaceModelReader
+from pisurfaces import (vtkPiExactSurfaceMapper, vtkPiMoleculeReader, vtkPiMoleculeSurface,
+                        vtkPiSurfaceModelReader)
 from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
@@ -22,13 +25,29 @@ frames = int(sys.argv[2]) if len(sys.argv) > 2 else 10
 vtkSMPTools.SetBackend("STDThread")
 
 
-def measure(name, reduction):
+def source_of(name):
+    """The model reader of a .pisurf file (meshed coarsely: the mapper casts its model),
+    or for "1ubq" the molecule in Local mode (the mapper casts the molecule's field)."""
+    if name == "1ubq":
+        reader = vtkPiMoleculeReader()
+        reader.SetFileName("/usr/share/freesasa/test-data/1ubq.pdb")
+        surface = vtkPiMoleculeSurface()
+        surface.SetInputConnection(reader.GetOutputPort())
+        surface.SetMode(vtkPiMoleculeSurface.LOCAL)
+        surface.SetSpacing(2.0)
+        surface.Update()
+        return surface
     reader = vtkPiSurfaceModelReader()
     reader.SetFileName(os.path.join(models, name))
     reader.SetResolution(8)
     reader.Update()
+    return reader
+
+
+def measure(name, reduction):
+    source = source_of(name)
     mapper = vtkPiExactSurfaceMapper()
-    mapper.SetInputConnection(reader.GetOutputPort())
+    mapper.SetInputConnection(source.GetOutputPort())
     mapper.SetReductionFactor(reduction)
     actor = vtkActor()
     actor.SetMapper(mapper)
@@ -55,8 +74,8 @@ print("Exact view frame time at 1280 x 800 (%s, %d threads), %d frames"
       % (vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads(), frames))
 print("| model | rays per pixel | cast | best | median |")
 print("|---|---|---|---|---|")
-for model in ("cup_a1.0.pisurf", "rounded_cube_sphere_2.pisurf"):
-    for reduction in (1, 2, 4):
+for model in ("cup_a1.0.pisurf", "rounded_cube_sphere_2.pisurf", "1ubq"):
+    for reduction in ((1, 2, 4) if model != "1ubq" else (1, 2)):
         best, median, cast = measure(model, reduction)
         print("| %s | 1/%d | %d x %d | %.1f ms | %.1f ms |" % (
             model, reduction * reduction, cast[0], cast[1], 1e3 * best, 1e3 * median))

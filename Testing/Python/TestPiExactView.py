@@ -2,7 +2,9 @@
 
 1. Images against baselines (Testing/Baselines/ExactView.*.png): the cup in solid
    colour (perspective), the dented cube coloured by Factor with a Cone source
-   through it (parallel projection: the cone shows where it is in front).
+   through it (parallel projection: the cone shows where it is in front), ubiquitin
+   (1ubq) from Molecular Pi Surface in Local mode (its atoms and settings, no
+   PiSurfaceModel; perspective).
    Interactive renders with LOD: one depth per 4 x 4 block; still renders: every pixel.
 2. Depth: the view's Z buffer at every pixel against the depth of vtkPiRayCaster's
    CAMERA-mode first hit for the same camera and size (perspective and parallel): the
@@ -16,7 +18,8 @@ import os
 import sys
 
 from paraview.simple import (ColorBy, Cone, GetActiveViewOrCreate, GetColorTransferFunction,
-                             PiSurfaceModelReader, Render, SaveScreenshot, Show, Sphere)
+                             MolecularPiSurface, PiMoleculeReader, PiSurfaceModelReader, Render,
+                             SaveScreenshot, Show, Sphere)
 from pisurfaces import vtkPiRayCaster, vtkPiSurfaceModelReader
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkStringOutputWindow, vtkOutputWindow
 from vtkmodules.vtkCommonMath import vtkMatrix4x4
@@ -200,6 +203,19 @@ compare(view, "cube_cone")
 cone_display.Visibility = 0
 depth_check(view, cube_path, "dented cube parallel")
 cube_display.Visibility = 0
+
+# 1c. Ubiquitin (1ubq), Molecular Pi Surface in Local mode (its atoms and settings, no
+# PiSurfaceModel): the exact view casts the molecule's own field.
+molecule = MolecularPiSurface(Input=PiMoleculeReader(
+    FileName="/usr/share/freesasa/test-data/1ubq.pdb"), Mode="Local", Spacing=2.0)
+molecule_display = Show(molecule, view)
+molecule_display.SetRepresentationType("Pi Exact Surface")
+molecule_display.DiffuseColor = [0.85, 0.75, 0.55]
+molecule_display.ColorArrayName = ["POINTS", ""]
+set_camera(view, [33, -55, 66], [33, 29, 21], [0, 0, 1], 0, angle=30)
+Render(view)
+compare(view, "1ubq")
+molecule_display.Visibility = 0
 
 # 3. No model: one warning naming the source, nothing drawn.
 messages = vtkStringOutputWindow()
