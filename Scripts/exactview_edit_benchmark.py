@@ -128,28 +128,21 @@ def main():
     mesh_source.Resolution = chosen
     Render(view)
 
-    def edit_exact(state={"a": 1.0}):
-        mesh.Visibility = 0
-        exact.Visibility = 1
+    def edit(source, shown, hidden, state):
+        """Shows one display alone, moves the handle, renders: the seconds."""
+        hidden.Visibility = 0
+        shown.Visibility = 1
         state["a"] = 1.02 if state["a"] == 1.0 else 1.0
         t = time.perf_counter()
-        exact_source.Model = with_a(model, state["a"])
-        Render(view)
-        return time.perf_counter() - t
-
-    def edit_mesh(state={"a": 1.0}):
-        exact.Visibility = 0
-        mesh.Visibility = 1
-        state["a"] = 1.02 if state["a"] == 1.0 else 1.0
-        t = time.perf_counter()
-        mesh_source.Model = with_a(model, state["a"])
+        source.Model = with_a(model, state["a"])
         Render(view)
         return time.perf_counter() - t
 
     times = {"exact": [], "mesh": []}
+    states = {"exact": {"a": 1.0}, "mesh": {"a": 1.0}}
     for _ in range(rounds):
-        times["exact"].append(edit_exact())
-        times["mesh"].append(edit_mesh())
+        times["exact"].append(edit(exact_source, exact, mesh, states["exact"]))
+        times["mesh"].append(edit(mesh_source, mesh, exact, states["mesh"]))
     model_only = exact_source.GetClientSideObject().GetLastOutputModelOnly()
     print()
     print("| path | best | median | mesh / exact (median) |")

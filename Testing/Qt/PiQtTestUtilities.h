@@ -18,6 +18,8 @@
 #include "pqRenderView.h"
 #include "pqServer.h"
 #include "pqServerResource.h"
+#include "vtkAbstractWidget.h"
+#include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkSMNewWidgetRepresentationProxy.h"
@@ -190,6 +192,15 @@ inline vtkSMNewWidgetRepresentationProxy* FindWidget(
     }
   }
   return nullptr;
+}
+
+// A drag of `widget` after its placement was set: the events its VTK widget fires.
+inline void Drag(vtkSMNewWidgetRepresentationProxy* widget)
+{
+  widget->UpdateVTKObjects();
+  widget->GetWidget()->InvokeEvent(vtkCommand::StartInteractionEvent);
+  widget->GetWidget()->InvokeEvent(vtkCommand::InteractionEvent);
+  widget->GetWidget()->InvokeEvent(vtkCommand::EndInteractionEvent);
 }
 
 }

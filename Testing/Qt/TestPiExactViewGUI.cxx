@@ -64,15 +64,6 @@ vtkPiExactSurfaceMapper* ExactMapper(vtkSMProxy* display)
     : nullptr;
   return exact ? exact->GetExactMapper() : nullptr;
 }
-
-// A drag of `widget` after its placement was set: the events its VTK widget fires.
-void Drag(vtkSMNewWidgetRepresentationProxy* widget)
-{
-  widget->UpdateVTKObjects();
-  widget->GetWidget()->InvokeEvent(vtkCommand::StartInteractionEvent);
-  widget->GetWidget()->InvokeEvent(vtkCommand::InteractionEvent);
-  widget->GetWidget()->InvokeEvent(vtkCommand::EndInteractionEvent);
-}
 }
 
 int main(int argc, char* argv[])

@@ -56,15 +56,6 @@ bool OutputModel(vtkSMSourceProxy* proxy, pisurf::Model& model)
   return json && json->GetNumberOfValues() == 1 &&
     pisurf::ParseModel(json->GetValue(0), model, error) && model.Primitives.size() == 1;
 }
-
-// A drag of `widget` after its placement was set: the events its VTK widget fires.
-void Drag(vtkSMNewWidgetRepresentationProxy* widget)
-{
-  widget->UpdateVTKObjects();
-  widget->GetWidget()->InvokeEvent(vtkCommand::StartInteractionEvent);
-  widget->GetWidget()->InvokeEvent(vtkCommand::InteractionEvent);
-  widget->GetWidget()->InvokeEvent(vtkCommand::EndInteractionEvent);
-}
 }
 
 int main(int argc, char* argv[])
