@@ -21,9 +21,8 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include <algorithm>
-#include <dlfcn.h>
 #include <cmath>
+#include <dlfcn.h>
 #include <string>
 
 struct vtkPiModelMesher::vtkInternals

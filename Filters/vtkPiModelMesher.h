@@ -211,7 +211,7 @@ private:
   vtkPiModelMesher(const vtkPiModelMesher&) = delete;
   void operator=(const vtkPiModelMesher&) = delete;
 
-  // Port 0 as the model alone (the demand wants no mesh); 0 with an error without bounds.
+  // Port 0 as the model alone (MODEL_ONLY() asked for); 0 with an error without bounds.
   int OutputModelOnly(vtkPolyData* output);
 
   // REQUEST_DATA_NOT_GENERATED: which of the two ports this execution leaves as they are.

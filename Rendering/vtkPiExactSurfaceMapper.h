@@ -13,8 +13,8 @@
  * The surface is the model of the field data `PiSurfaceModel`, or for a molecule
  * (Molecular Pi Surface in either mode) its `PiMolecule*` arrays, of ModelData when set,
  * else of the mapper's input (a data set, or the first leaf of a composite data set that
- * has the model). Without a model
- * the mapper draws nothing and, when WarnMissingModel is on, warns once per input.
+ * has the model). Without a model the mapper draws nothing and, when WarnMissingModel is
+ * on, warns once per input.
  *
  * Shading happens on the CPU with the renderer's lights (switched-on lights, taken as
  * directional from their transformed position to their focal point; two-sided):

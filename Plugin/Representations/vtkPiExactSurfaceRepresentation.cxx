@@ -3,8 +3,8 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
-#include "vtkFieldData.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
@@ -71,10 +71,7 @@ int vtkPiExactSurfaceRepresentation::RequestUpdateExtent(
   {
     return 0;
   }
-  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
-  {
-    inputVector[0]->GetInformationObject(i)->Set(vtkPiModelMesher::MODEL_ONLY(), 1);
-  }
+  this->SetModelOnlyRequest(1);
   return 1;
 }
 
@@ -136,7 +133,7 @@ int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
   {
     // The view's updates are done. The producer's output information is shared by every
     // consumer of that output: the next one asks for the mesh unless it says otherwise.
-    this->AskForMesh();
+    this->SetModelOnlyRequest(0);
     auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
     const bool lod = this->Actor->GetEnableLOD() != 0;
@@ -158,11 +155,11 @@ int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
   return 1;
 }
 
-void vtkPiExactSurfaceRepresentation::AskForMesh()
+void vtkPiExactSurfaceRepresentation::SetModelOnlyRequest(int modelOnly)
 {
   for (int i = 0; i < this->GetNumberOfInputConnections(0); ++i)
   {
-    this->GetExecutive()->GetInputInformation(0, i)->Set(vtkPiModelMesher::MODEL_ONLY(), 0);
+    this->GetExecutive()->GetInputInformation(0, i)->Set(vtkPiModelMesher::MODEL_ONLY(), modelOnly);
   }
 }
 
@@ -170,7 +167,7 @@ void vtkPiExactSurfaceRepresentation::SetVisibility(bool visible)
 {
   if (!visible)
   {
-    this->AskForMesh();
+    this->SetModelOnlyRequest(0);
   }
   this->Superclass::SetVisibility(visible);
 }

@@ -64,8 +64,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  // Sets MODEL_ONLY() back to 0 in the producer's output information.
-  void AskForMesh();
+  // Sets MODEL_ONLY() in the producer's output information: 1 (the model alone) for this
+  // representation's update, 0 (the mesh) for whoever updates next.
+  void SetModelOnlyRequest(int modelOnly);
 
   vtkNew<vtkPolyData> ModelCarrier; // the input's field data
   void* WarnedProducer = nullptr;   // the producer last warned about

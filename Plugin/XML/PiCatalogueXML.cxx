@@ -64,13 +64,11 @@ std::string TypesWith(const std::string& property)
   std::string values;
   for (const pisurf::PrimitiveInfo& entry : pisurf::PrimitiveCatalogue())
   {
-    for (const pisurf::ParameterInfo& p : entry.Parameters)
+    // (FindParameter also takes a .pisurf key; the markers name properties only)
+    const pisurf::ParameterInfo* p = pisurf::FindParameter(entry, property);
+    if (p && property == p->Property)
     {
-      if (property == p.Property)
-      {
-        values += (values.empty() ? "" : " ") + std::to_string(static_cast<int>(entry.Type));
-        break;
-      }
+      values += (values.empty() ? "" : " ") + std::to_string(static_cast<int>(entry.Type));
     }
   }
   return values;
