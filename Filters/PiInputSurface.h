@@ -55,12 +55,17 @@ inline vtkSmartPointer<vtkPiSurface> SurfaceOf(
             "Pi Primitive, Pi Product or the model reader)";
     return nullptr;
   }
-  auto surface = vtkSmartPointer<vtkPiSurface>::New();
-  if (!surface->SetModelJSON(json->GetValue(0)))
+  // Parsed here rather than by vtkPiSurface::SetModelJSON, which would report the error
+  // itself: the calling algorithm reports it, once.
+  pisurf::Model model;
+  std::string reason;
+  if (!pisurf::ParseModel(json->GetValue(0), model, reason))
   {
-    error = std::string("Invalid PiSurfaceModel: ") + surface->GetErrorMessage();
+    error = "Invalid PiSurfaceModel: " + reason;
     return nullptr;
   }
+  auto surface = vtkSmartPointer<vtkPiSurface>::New();
+  surface->SetCoreModel(model);
   return surface;
 }
 

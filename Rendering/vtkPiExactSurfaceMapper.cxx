@@ -7,6 +7,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkGarbageCollector.h"
 #include "vtkInformation.h"
@@ -112,6 +113,7 @@ struct vtkPiExactSurfaceMapper::Internals
   vtkMTimeType CarriedTime = 0;
   vtkDataObject* WarnedInput = nullptr; // the input last warned about
   bool WarnedMemory = false;
+  vtkMTimeType RefusedTime = 0; // the carrier's time when the caster refused its model
 
   int W = 0, H = 0; // the image of the last cast (rays)
   std::vector<unsigned char> Colour;
@@ -281,18 +283,26 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   caster->SetViewAngle(angle);
   caster->SetParallelProjection(camera->GetParallelProjection() != 0);
   caster->SetParallelScale(camera->GetParallelScale());
+  // A model the caster refused (its error is in the output window) is not cast again
+  // until it changes: the error is not repeated at every camera move.
+  if (in.RefusedTime == in.Carrier->GetMTime())
+  {
+    return;
+  }
   const vtkMTimeType before = caster->GetOutput()->GetMTime();
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
-  if (this->NumberOfPieces > 1)
-  {
-    caster->UpdatePiece(this->Piece, this->NumberOfPieces, 0);
-  }
-  else
-  {
-    caster->Update();
-  }
+  const bool cast = this->NumberOfPieces > 1
+    ? caster->UpdatePiece(this->Piece, this->NumberOfPieces, 0) != 0
+    : caster->GetExecutive()->Update() != 0;
   timer->StopTimer();
+  if (!cast)
+  {
+    in.RefusedTime = in.Carrier->GetMTime();
+    this->HitRows[0] = this->HitRows[1] = -1;
+    return;
+  }
+  in.RefusedTime = 0;
   vtkPolyData* hits = caster->GetOutput();
   if (hits->GetMTime() != before)
   {
@@ -312,6 +322,14 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   vtkDataArray* factors = hits->GetPointData()->GetArray("Factor");
   vtkDataArray* singular = hits->GetPointData()->GetArray("Singular");
   const vtkIdType n = hits->GetNumberOfPoints();
+  this->HitRows[0] = this->HitRows[1] = -1;
+  if (n > 0 && pixels)
+  {
+    double rows[2];
+    pixels->GetRange(rows, 1);
+    this->HitRows[0] = static_cast<int>(rows[0]);
+    this->HitRows[1] = static_cast<int>(rows[1]);
+  }
   if (n > 0 && pixels && normals)
   {
     vtkMatrix4x4* projection =
@@ -564,5 +582,6 @@ void vtkPiExactSurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MarkSingular: " << this->MarkSingular << "\n";
   os << indent << "WarnMissingModel: " << this->WarnMissingModel << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";
+  os << indent << "HitRows: " << this->HitRows[0] << " to " << this->HitRows[1] << "\n";
   os << indent << "CastCount: " << this->CastCount << "\n";
 }

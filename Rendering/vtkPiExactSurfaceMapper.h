@@ -31,6 +31,9 @@
  * cast only the rows [h·piece/n, h·(piece+1)/n) of the image (vtkPiRayCaster's pieces),
  * for parallel rendering with depth compositing.
  *
+ * A model the caster refuses (invalid, not finite) gets the caster's error once and draws
+ * nothing; it is not cast again until the model changes.
+ *
  * The cast and the images are kept while the camera, the viewport, the model and the
  * settings stay the same; a render then only colours and draws them again.
  *
@@ -106,6 +109,9 @@ public:
   vtkGetMacro(LastCastSeconds, double);
   /// The resolution of the last cast (w, h rays).
   vtkGetVector2Macro(CastResolution, int);
+  /// The lowest and highest row (of the cast image) holding a hit of this process's last
+  /// cast; -1, -1 without hits. With pieces, the rows lie in this process's piece.
+  vtkGetVector2Macro(HitRows, int);
   /// Whether the last render found a model and drew it.
   vtkGetMacro(Drawn, bool);
 
@@ -126,6 +132,7 @@ protected:
   int CastCount = 0;
   double LastCastSeconds = 0.0;
   int CastResolution[2] = { 0, 0 };
+  int HitRows[2] = { -1, -1 };
   bool Drawn = false;
 
 private:

@@ -43,6 +43,11 @@ vtkPiExactSurfaceMapper* vtkPiExactSurfaceRepresentation::GetExactMapper()
   return static_cast<vtkPiExactSurfaceMapper*>(this->Mapper);
 }
 
+int* vtkPiExactSurfaceRepresentation::GetHitRows()
+{
+  return this->GetExactMapper()->GetHitRows();
+}
+
 void vtkPiExactSurfaceRepresentation::SetMarkSingular(bool mark)
 {
   static_cast<vtkPiExactSurfaceMapper*>(this->Mapper)->SetMarkSingular(mark);

@@ -51,6 +51,10 @@ public:
   /// The mapper of still renders (for tests: its cast count and timing).
   vtkPiExactSurfaceMapper* GetExactMapper();
 
+  /// The lowest and highest image row of this process's hits in the last still render
+  /// (-1, -1 without hits): in parallel, the rows of this rank's piece that hit.
+  int* GetHitRows() VTK_SIZEHINT(2);
+
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
     vtkInformation* outInfo) override;
 

@@ -13,13 +13,15 @@
    if that is larger).
 3. A Sphere source shown as Pi Exact Surface: one warning naming the source, nothing
    drawn, no crash; renders after that warn no more.
+4. A model the caster refuses (a coefficient overflows): the caster's error once over
+   three renders, nothing drawn; the same source with a valid model draws.
 """
 import os
 import sys
 
 from paraview.simple import (ColorBy, Cone, GetActiveViewOrCreate, GetColorTransferFunction,
                              MolecularPiSurface, PiMoleculeReader, PiSurfaceModelReader, Render,
-                             SaveScreenshot, Show, Sphere)
+                             ProgrammableSource, SaveScreenshot, Show, Sphere)
 from pisurfaces import vtkPiRayCaster, vtkPiSurfaceModelReader
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkStringOutputWindow, vtkOutputWindow
 from vtkmodules.vtkCommonMath import vtkMatrix4x4
@@ -237,6 +239,60 @@ z = vtkFloatArray()
 w, h = window.GetSize()
 window.GetZbufferData(0, 0, w - 1, h - 1, z)
 check(all(z.GetValue(n) >= 1.0 for n in range(w * h)), "nothing drawn for the sphere")
+
+sphere_display.Visibility = 0
+
+# 4. A model the caster refuses (a coefficient that overflows): the caster's error,
+#    once over renders from three cameras, nothing drawn; the model made valid draws.
+cup_text = open(os.path.join(models, "cup_a1.0.pisurf")).read()
+check("-0.1\"" in cup_text, "the cup's model has the term replaced below")
+carrier = ProgrammableSource(OutputDataSetType="vtkPolyData")
+
+
+def carry(text):
+    """The carrier outputs the box's corners with `text` as its PiSurfaceModel."""
+    carrier.Script = "\n".join([
+        "from vtkmodules.vtkCommonCore import vtkPoints, vtkStringArray",
+        "model = vtkStringArray()",
+        "model.SetName('PiSurfaceModel')",
+        "model.InsertNextValue(%r)" % text,
+        "output = self.GetOutput()",
+        "output.GetFieldData().AddArray(model)",
+        "corners = vtkPoints()",
+        "corners.InsertNextPoint(-2.2, -2.1, -2.55)",
+        "corners.InsertNextPoint(3.4, 2.1, 0.25)",
+        "output.SetPoints(corners)"])
+
+
+carry(cup_text.replace("-0.1\"", "-1e300*1e300\""))
+carrier_display = Show(carrier, view)
+carrier_display.SetRepresentationType("Pi Exact Surface")
+messages = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(messages)
+for position in ([6, -8, 4], [8, -6, 4], [6, -8, 6]):
+    set_camera(view, position, [0.7, 0, -1.2], [0, 0, 1], 0)
+    Render(view)
+vtkOutputWindow.SetInstance(previous)
+text = messages.GetOutput()
+print("messages of the refused model:\n" + text)
+check(text.count("Invalid PiSurfaceModel") == 1, "one error for the refused model")
+check("coefficient overflow" in text and "bowl base ellipsoid" in text,
+      "the error says what is wrong and where")
+
+
+def covered():
+    Render(view)
+    z = vtkFloatArray()
+    w, h = window.GetSize()
+    window.GetZbufferData(0, 0, w - 1, h - 1, z)
+    return len([n for n in range(w * h) if z.GetValue(n) < 1.0])
+
+
+check(covered() == 0, "nothing drawn for the refused model")
+carry(cup_text)
+drawn = covered()
+print("pixels covered once the model is valid: %d" % drawn)
+check(drawn > W * H // 20, "the valid model draws")
 
 # os._exit: pvpython 5.11 tearing its offscreen X window down at sys.exit fails
 # (GLXBadContext) whichever representation was shown.

@@ -1,6 +1,7 @@
 """Run with `mpiexec -n 2 pvbatch TestPiExactViewMPI.py`: the Pi Exact Surface
 representation in ParaView's MPI mode. Each rank casts its share of the view's pixel
-rows and ParaView composites the ranks' images by depth: the screenshot must equal the
+rows and ParaView composites the ranks' images by depth: rank 0's hits (the
+representation's HitRows) lie in its half of the rows, and the screenshot must equal the
 serial picture (Testing/Baselines/ExactView.cup.png, rendered by TestPiExactView with
 the same model, camera and size) and the baseline check must fail if a rank's rows were
 missing (the image compared is also checked to cover both halves of the cup)."""
@@ -56,6 +57,15 @@ for j in range(H):
 print("rows with the surface: %d (lowest %d, highest %d)"
       % (len(rows_drawn), min(rows_drawn), max(rows_drawn)))
 check(min(rows_drawn) < H // 2 < max(rows_drawn), "the surface spans both ranks' rows")
+# This script runs on rank 0, whose share is the rows [0, H/2): its hits lie there, so
+# the picture's rows above come from rank 1's cast.
+display.SMProxy.UpdatePropertyInformation()
+hit_rows = display.SMProxy.GetProperty("HitRows")
+first, last = hit_rows.GetElement(0), hit_rows.GetElement(1)
+print("rank 0 hit rows %d to %d" % (first, last))
+check(0 <= first <= last < H // 2, "rank 0 cast only its rows [0, %d)" % (H // 2))
+check(first == min(rows_drawn), "rank 0's lowest hit row is the picture's lowest")
+check(max(rows_drawn) > last, "the picture has rows rank 0 did not cast")
 testing = vtkTesting()
 for argument in ("-V", baseline, "-T", temp):
     testing.AddArgument(argument)
