@@ -34,6 +34,7 @@
 
 #include "vtk_glew.h"
 
+#include "PiTiming.h"
 #include "RayCasting/PiRayViews.h"
 
 #include <algorithm>
@@ -175,6 +176,10 @@ void vtkPiExactSurfaceMapper::ReportReferences(vtkGarbageCollector* collector)
 double* vtkPiExactSurfaceMapper::GetBounds()
 {
   vtkMath::UninitializeBounds(this->Bounds);
+  if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)
+  {
+    this->Update(); // as VTK's mappers do: the renderer culls a prop without bounds
+  }
   vtkDataObject* data =
     this->GetNumberOfInputConnections(0) ? this->GetInputDataObject(0, 0) : this->ModelData;
   if (auto* ds = vtkDataSet::SafeDownCast(data))
@@ -220,6 +225,10 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     return;
   }
+  if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)
+  {
+    this->Update(); // the input's pipeline, as VTK's mappers do
+  }
   vtkDataObject* source = this->ModelData
     ? this->ModelData
     : (this->GetNumberOfInputConnections(0) ? this->GetInputDataObject(0, 0) : nullptr);
@@ -250,14 +259,18 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     return;
   }
-  // The reduction: the requested one, raised until the cast fits the caster's cap.
-  int r = this->ReductionFactor;
+  // The reduction: ReductionFactor, or InteractiveReductionFactor if larger in an
+  // interactive render, raised until the cast fits the caster's cap.
+  const bool interactive = window->GetDesiredUpdateRate() >= 1.0;
+  const int requested =
+    std::max(this->ReductionFactor, interactive ? this->InteractiveReductionFactor : 1);
+  int r = requested;
   std::string error;
   while (!pisurf::RayViews::CheckMemory((width + r - 1) / r, (height + r - 1) / r, 1, error))
   {
     ++r;
   }
-  if (r > this->ReductionFactor && !in.WarnedMemory)
+  if (r > requested && !in.WarnedMemory)
   {
     vtkWarningMacro("A full cast of " << width << " x " << height
                                       << " pixels exceeds the ray caster's memory cap; the exact "
@@ -289,6 +302,8 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   {
     return;
   }
+  // PISURF_TIMING=1: the time of the cast, the shading, the upload and the drawing.
+  pisurf::PassTimer lap("vtkPiExactSurfaceMapper");
   const vtkMTimeType before = caster->GetOutput()->GetMTime();
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
@@ -296,6 +311,7 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
     ? caster->UpdatePiece(this->Piece, this->NumberOfPieces, 0) != 0
     : caster->GetExecutive()->Update() != 0;
   timer->StopTimer();
+  lap("cast");
   if (!cast)
   {
     in.RefusedTime = in.Carrier->GetMTime();
@@ -529,6 +545,7 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
       });
   }
 
+  lap("shade");
   // Upload and draw.
   if (!in.ColourTexture)
   {
@@ -546,6 +563,7 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
     t->SetWrapS(vtkTextureObject::ClampToEdge);
     t->SetWrapT(vtkTextureObject::ClampToEdge);
   }
+  lap("upload");
   if (!in.Quad)
   {
     in.Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, QuadFragmentShader, nullptr));
@@ -571,6 +589,11 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   in.Quad->Render();
   in.DepthTexture->Deactivate();
   in.ColourTexture->Deactivate();
+  if (lap.IsEnabled())
+  {
+    glFinish(); // the drawing, not just its queueing
+    lap("draw");
+  }
   this->Drawn = true;
 }
 
@@ -579,6 +602,7 @@ void vtkPiExactSurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ModelData: " << this->ModelData << "\n";
   os << indent << "ReductionFactor: " << this->ReductionFactor << "\n";
+  os << indent << "InteractiveReductionFactor: " << this->InteractiveReductionFactor << "\n";
   os << indent << "MarkSingular: " << this->MarkSingular << "\n";
   os << indent << "WarnMissingModel: " << this->WarnMissingModel << "\n";
   os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";

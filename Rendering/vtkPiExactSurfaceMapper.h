@@ -13,8 +13,8 @@
  * The surface is the model of the field data `PiSurfaceModel`, or for a molecule
  * (Molecular Pi Surface in either mode) its `PiMolecule*` arrays, of ModelData when set,
  * else of the mapper's input (a data set, or the first leaf of a composite data set that
- * has the model). Without a model the mapper draws nothing and, when WarnMissingModel is
- * on, warns once per input.
+ * has the model; the render updates the input's pipeline first unless Static is on). Without a
+ * model the mapper draws nothing and, when WarnMissingModel is on, warns once per input.
  *
  * Shading happens on the CPU with the renderer's lights (switched-on lights, taken as
  * directional from their transformed position to their focal point; two-sided):
@@ -25,11 +25,14 @@
  * range is the mapper's ScalarRange unless UseLookupTableScalarRange is on).
  * MarkSingular paints hits the caster classifies singular in red.
  *
- * ReductionFactor r > 1 casts one ray per r × r pixels and fills the blocks (for
- * interactive renders). A viewport whose full cast would exceed the caster's memory cap
- * is cast at the smallest reduction that fits (with one warning). Piece/NumberOfPieces
- * cast only the rows [h·piece/n, h·(piece+1)/n) of the image (vtkPiRayCaster's pieces),
- * for parallel rendering with depth compositing.
+ * ReductionFactor r > 1 casts one ray per r × r pixels and fills the blocks.
+ * InteractiveReductionFactor (default 2) does the same in interactive renders only: the
+ * renders whose window asks for at least one frame a second (GetDesiredUpdateRate() >= 1:
+ * VTK's interactor while the mouse moves, ParaView's interactive renders), so that the
+ * still render after the interaction casts every pixel again. A viewport whose full cast would
+ * exceed the caster's memory cap is cast at the smallest reduction that fits (with one warning).
+ * Piece/NumberOfPieces cast only the rows [h·piece/n, h·(piece+1)/n) of the image (vtkPiRayCaster's
+ * pieces), for parallel rendering with depth compositing.
  *
  * A model the caster refuses (invalid, not finite) gets the caster's error once and draws
  * nothing; it is not cast again until the model changes.
@@ -72,6 +75,12 @@ public:
   /// One ray per ReductionFactor × ReductionFactor pixels (1 to 16, default 1).
   vtkSetClampMacro(ReductionFactor, int, 1, 16);
   vtkGetMacro(ReductionFactor, int);
+  ///@}
+
+  ///@{
+  /// One ray per n × n pixels in interactive renders (1 to 16, default 2; see above).
+  vtkSetClampMacro(InteractiveReductionFactor, int, 1, 16);
+  vtkGetMacro(InteractiveReductionFactor, int);
   ///@}
 
   ///@{
@@ -125,6 +134,7 @@ protected:
 
   vtkDataObject* ModelData = nullptr;
   int ReductionFactor = 1;
+  int InteractiveReductionFactor = 2;
   bool MarkSingular = false;
   bool WarnMissingModel = true;
   int Piece = 0;

@@ -30,7 +30,6 @@ vtkPiExactSurfaceRepresentation::vtkPiExactSurfaceRepresentation()
     mapper->SetWarnMissingModel(false);
     mapper->SetModelData(this->ModelCarrier);
   }
-  lod->SetReductionFactor(2);
   this->Mapper = still;
   this->LODMapper = lod;
   this->SetupDefaults();
@@ -61,12 +60,13 @@ bool vtkPiExactSurfaceRepresentation::GetMarkSingular()
 
 void vtkPiExactSurfaceRepresentation::SetInteractiveReduction(int n)
 {
-  static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->SetReductionFactor(n);
+  static_cast<vtkPiExactSurfaceMapper*>(this->Mapper)->SetInteractiveReductionFactor(n);
+  static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->SetInteractiveReductionFactor(n);
 }
 
 int vtkPiExactSurfaceRepresentation::GetInteractiveReduction()
 {
-  return static_cast<vtkPiExactSurfaceMapper*>(this->LODMapper)->GetReductionFactor();
+  return this->GetExactMapper()->GetInteractiveReductionFactor();
 }
 
 int vtkPiExactSurfaceRepresentation::RequestUpdateExtent(

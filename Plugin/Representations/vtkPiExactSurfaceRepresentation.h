@@ -7,9 +7,10 @@
  * mapper are vtkPiExactSurfaceMapper: everything else (colouring, the property, delivery, bounds,
  * LOD decisions) is the Surface representation's. The mappers cast the model of the input's field
  * data `PiSurfaceModel` (a copy of the input's field data taken at each update), so an edit of the
- * model re-casts without a mesh ever being drawn. The LOD mapper, drawn when the view renders
- * interactively with LOD (vtkPVRenderView::USE_LOD), casts one ray per InteractiveReduction ×
- * InteractiveReduction pixels.
+ * model re-casts without a mesh ever being drawn. Both mappers cast one ray per
+ * InteractiveReduction × InteractiveReduction pixels in the view's interactive renders (the
+ * camera moving, a widget dragging: vtkPVRenderView asks the window for 5 frames a second),
+ * whether or not the view uses LOD, and every pixel in still renders.
  *
  * Its update asks the producer for the model alone (vtkPiModelMesher::MODEL_ONLY() set
  * to 1 in its request), so Pi Surface, the model reader and Pi Product compute no mesh
@@ -44,7 +45,7 @@ public:
   void SetMarkSingular(bool mark);
   bool GetMarkSingular();
 
-  /// One ray per n × n pixels in interactive (LOD) renders (1 to 16, default 2).
+  /// One ray per n × n pixels in interactive renders (1 to 16, default 2).
   void SetInteractiveReduction(int n);
   int GetInteractiveReduction();
 

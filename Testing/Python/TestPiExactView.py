@@ -5,7 +5,8 @@
    through it (parallel projection: the cone shows where it is in front), ubiquitin
    (1ubq) from Molecular Pi Surface in Local mode (its atoms and settings, no
    PiSurfaceModel; perspective).
-   Interactive renders with LOD: one depth per 4 x 4 block; still renders: every pixel.
+   Interactive renders, with or without LOD: one depth per 4 x 4 block; still renders:
+   every pixel.
 2. Depth: the view's Z buffer at every pixel against the depth of vtkPiRayCaster's
    CAMERA-mode first hit for the same camera and size (perspective and parallel): the
    same pixels hit, and each hit's point, unprojected from the Z buffer, within
@@ -149,8 +150,9 @@ Render(view)
 compare(view, "cup")
 check(cup_display.Representation == "Pi Exact Surface", "the representation type is set")
 
-# Interactive renders with LOD cast one ray per n x n pixels: every 4 x 4 block of the
-# Z buffer holds one depth; still renders cast every pixel again.
+# Interactive renders cast one ray per n x n pixels: every 4 x 4 block of the Z buffer
+# holds one depth, at ParaView's default LOD Threshold (the 8 points the display gets
+# are far below it) and with level of detail; still renders cast every pixel again.
 def uniform_blocks(view, n):
     window = view.GetRenderWindow()
     w, h = window.GetSize()
@@ -168,16 +170,23 @@ def uniform_blocks(view, n):
     return uniform, mixed
 
 
-view.LODThreshold = 0.0
 cup_display.InteractiveReduction = 4
+for threshold in (view.LODThreshold, 0.0):
+    view.LODThreshold = threshold
+    view.InteractiveRender()
+    uniform, mixed = uniform_blocks(view, 4)
+    print("LOD Threshold %g, interactive render, 4 x 4: %d uniform blocks on the cup, %d mixed"
+          % (threshold, uniform, mixed))
+    check(uniform > 500 and mixed == 0, "an interactive render casts one ray per 4 x 4 pixels")
+    Render(view)
+    uniform, mixed = uniform_blocks(view, 4)
+    print("still render: %d uniform blocks on the cup, %d mixed" % (uniform, mixed))
+    check(mixed > 500, "a still render casts every pixel")
+cup_display.InteractiveReduction = 1
 view.InteractiveRender()
 uniform, mixed = uniform_blocks(view, 4)
-print("interactive render, 4 x 4: %d uniform blocks on the cup, %d mixed" % (uniform, mixed))
-check(uniform > 500 and mixed == 0, "an interactive render casts one ray per 4 x 4 pixels")
-Render(view)
-uniform, mixed = uniform_blocks(view, 4)
-print("still render: %d uniform blocks on the cup, %d mixed" % (uniform, mixed))
-check(mixed > 500, "a still render casts every pixel")
+check(mixed > 500, "InteractiveReduction 1: interactive renders cast every pixel")
+cup_display.InteractiveReduction = 2
 view.LODThreshold = 20.0
 
 # 2. Depth of the cup, perspective and parallel.
