@@ -6,35 +6,17 @@ ray per InteractiveReductionFactor x InteractiveReductionFactor pixels (2 by def
 then 4); when it ends (EndRotate: the still rate) the render casts every pixel again.
 ReductionFactor, if larger, wins in both; InteractiveReductionFactor 1 casts every pixel.
 """
-import os
-
-from pisurfaces import vtkPiExactSurfaceMapper, vtkPiSurfaceModelReader
 from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
-                                         vtkRenderWindowInteractor)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkRenderingCore import vtkRenderWindowInteractor
 
-from pitesting import check, finish
+from pitesting import check, exact_view_of_cup, finish
 
 W, H = 301, 200
-reader = vtkPiSurfaceModelReader()
-reader.SetFileName(os.path.join(os.environ["PISURF_MODELS_DIR"], "cup_a1.0.pisurf"))
-reader.SetResolution(8)
-mapper = vtkPiExactSurfaceMapper()
-mapper.SetInputConnection(reader.GetOutputPort())
-actor = vtkActor()
-actor.SetMapper(mapper)
-renderer = vtkRenderer()
-renderer.AddActor(actor)
-window = vtkRenderWindow()
-window.SetOffScreenRendering(1)
-window.SetSize(W, H)
-window.AddRenderer(renderer)
+mapper, renderer, window = exact_view_of_cup(W, H)
 interactor = vtkRenderWindowInteractor()
 interactor.SetRenderWindow(window)
 style = vtkInteractorStyleTrackballCamera()
 interactor.SetInteractorStyle(style)
-renderer.ResetCamera()
 window.Render()
 
 

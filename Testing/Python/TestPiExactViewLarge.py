@@ -8,33 +8,15 @@ window's own buffers, about 4 GiB with Mesa, are there in both).
 """
 import resource
 
-from pisurfaces import vtkPiExactSurfaceMapper, vtkPiSurfaceModelReader
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkOutputWindow, vtkStringOutputWindow
-from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
-import os
 
-from pitesting import check, finish
+from pitesting import check, exact_view_of_cup, finish
 
 SIZE = 8192
 CAP_MIB = 2048
 
-reader = vtkPiSurfaceModelReader()
-reader.SetFileName(os.path.join(os.environ["PISURF_MODELS_DIR"], "cup_a1.0.pisurf"))
-reader.SetResolution(8)
-reader.Update()
-mapper = vtkPiExactSurfaceMapper()
-mapper.SetInputConnection(reader.GetOutputPort())
+mapper, renderer, window = exact_view_of_cup(SIZE, SIZE)
 mapper.SetReductionFactor(16)
-actor = vtkActor()
-actor.SetMapper(mapper)
-renderer = vtkRenderer()
-renderer.AddActor(actor)
-window = vtkRenderWindow()
-window.SetOffScreenRendering(1)
-window.SetSize(SIZE, SIZE)
-window.AddRenderer(renderer)
-renderer.ResetCamera()
 
 messages = vtkStringOutputWindow()
 previous = vtkOutputWindow.GetInstance()

@@ -51,3 +51,27 @@ def serial_model_mesh(path, resolution, method=0):
     reader.SetMethod(method)
     reader.Update()
     return reader
+
+
+def exact_view_of_cup(width, height):
+    """The cup (coarse model reader) drawn by a vtkPiExactSurfaceMapper in an offscreen
+    VTK window of width x height, the camera reset on it: (mapper, renderer, window)."""
+    import os
+    from pisurfaces import vtkPiExactSurfaceMapper, vtkPiSurfaceModelReader
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+    reader = vtkPiSurfaceModelReader()
+    reader.SetFileName(os.path.join(os.environ["PISURF_MODELS_DIR"], "cup_a1.0.pisurf"))
+    reader.SetResolution(8)
+    mapper = vtkPiExactSurfaceMapper()
+    mapper.SetInputConnection(reader.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(width, height)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    return mapper, renderer, window
