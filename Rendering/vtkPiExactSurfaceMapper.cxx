@@ -17,6 +17,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderPass.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -114,6 +115,7 @@ struct vtkPiExactSurfaceMapper::Internals
   vtkMTimeType CarriedTime = 0;
   vtkDataObject* WarnedInput = nullptr; // the input last warned about
   bool WarnedMemory = false;
+  bool WarnedTranslucent = false;
   vtkMTimeType RefusedTime = 0; // the carrier's time when the caster refused its model
 
   int W = 0, H = 0; // the image of the last cast (rays)
@@ -223,6 +225,21 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   if (!window || ren->GetSelector())
   {
+    return;
+  }
+  // Depth peeling and order-independent translucency draw translucent props with shader
+  // code of their own that the quad does not carry.
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (actor->HasTranslucentPolygonalGeometry() && keys &&
+    keys->Length(vtkOpenGLRenderPass::RenderPasses()) > 0)
+  {
+    if (!in.WarnedTranslucent)
+    {
+      vtkWarningMacro("A translucent exact surface cannot be drawn by the renderer's depth "
+                      "peeling or order-independent translucency: turn the actor's ForceOpaque "
+                      "on (the surface then blends over what was drawn before it) or both off.");
+      in.WarnedTranslucent = true;
+    }
     return;
   }
   if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)

@@ -25,6 +25,12 @@
  * range is the mapper's ScalarRange unless UseLookupTableScalarRange is on).
  * MarkSingular paints hits the caster classifies singular in red.
  *
+ * Opacity below 1 blends the first hits over what the renderer drew before them (with
+ * their depth written), in the opaque pass when the actor's ForceOpaque is on, or in a
+ * translucent pass without depth peeling or order-independent translucency. Those two
+ * need shader code the quad does not carry: a translucent actor then draws nothing,
+ * with one warning. (ParaView's representation turns ForceOpaque on.)
+ *
  * ReductionFactor r > 1 casts one ray per r × r pixels and fills the blocks.
  * InteractiveReductionFactor (default 2) does the same in interactive renders only: the
  * renders whose window asks for at least one frame a second (GetDesiredUpdateRate() >= 1:

@@ -32,6 +32,10 @@ vtkPiExactSurfaceRepresentation::vtkPiExactSurfaceRepresentation()
   }
   this->Mapper = still;
   this->LODMapper = lod;
+  // The quad is drawn in the opaque pass whatever the Opacity: ParaView's translucent pass
+  // peels depth layers with shader code the quad does not have. A translucent exact
+  // surface blends over what the view drew before it.
+  this->Actor->SetForceOpaque(true);
   this->SetupDefaults();
 }
 

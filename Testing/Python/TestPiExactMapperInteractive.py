@@ -5,7 +5,12 @@ window's desired update rate to the interactor's, 15 frames a second) renders ca
 ray per InteractiveReductionFactor x InteractiveReductionFactor pixels (2 by default,
 then 4); when it ends (EndRotate: the still rate) the render casts every pixel again.
 ReductionFactor, if larger, wins in both; InteractiveReductionFactor 1 casts every pixel.
+
+Translucency: an actor of opacity 0.5 in a renderer with depth peeling (or VTK's default
+order-independent translucency) draws nothing and warns once; with ForceOpaque on it
+draws, blended over the background.
 """
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
 from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
 from vtkmodules.vtkRenderingCore import vtkRenderWindowInteractor
 
@@ -48,4 +53,22 @@ mapper.SetInteractiveReductionFactor(2)
 cast_after(window.Render, "rotating again", reduced(2))
 style.EndRotate()  # renders at the still rate
 cast_after(window.Render, "after the rotation", (W, H))
+
+actor = renderer.GetActors().GetLastActor()
+actor.GetProperty().SetOpacity(0.5)
+messages = vtkStringOutputWindow()
+previous = vtkOutputWindow.GetInstance()
+vtkOutputWindow.SetInstance(messages)
+for peeling in (1, 0):  # peeling, then VTK's order-independent translucency
+    renderer.SetUseDepthPeeling(peeling)
+    for _ in range(2):
+        window.Render()
+        check(not mapper.GetDrawn(), "a translucent actor draws nothing (peeling %d)" % peeling)
+vtkOutputWindow.SetInstance(previous)
+text = messages.GetOutput()
+print("translucent actor: " + text.strip())
+check(text.count("translucent exact surface") == 1, "one warning for the translucent actor")
+actor.ForceOpaqueOn()
+window.Render()
+check(mapper.GetDrawn(), "with ForceOpaque the translucent actor draws")
 finish()

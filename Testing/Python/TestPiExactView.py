@@ -6,7 +6,8 @@
    (1ubq) from Molecular Pi Surface in Local mode (its atoms and settings, no
    PiSurfaceModel; perspective).
    Interactive renders, with or without LOD: one depth per 4 x 4 block; still renders:
-   every pixel.
+   every pixel. Opacity 0.35 with depth peeling: the opaque picture blended over the
+   background, pixel by pixel.
 2. Depth: the view's Z buffer at every pixel against the depth of vtkPiRayCaster's
    CAMERA-mode first hit for the same camera and size (perspective and parallel): the
    same pixels hit, and each hit's point, unprojected from the Z buffer, within
@@ -24,7 +25,8 @@ from paraview.simple import (ColorBy, Cone, GetActiveViewOrCreate, GetColorTrans
                              MolecularPiSurface, PiMoleculeReader, PiSurfaceModelReader, Render,
                              ProgrammableSource, SaveScreenshot, Show, Sphere)
 from pisurfaces import vtkPiRayCaster, vtkPiSurfaceModelReader
-from vtkmodules.vtkCommonCore import vtkFloatArray, vtkStringOutputWindow, vtkOutputWindow
+from vtkmodules.vtkCommonCore import (vtkFloatArray, vtkOutputWindow, vtkStringOutputWindow,
+                                      vtkUnsignedCharArray)
 from vtkmodules.vtkCommonMath import vtkMatrix4x4
 from vtkmodules.vtkTestingRendering import vtkTesting
 
@@ -188,6 +190,37 @@ uniform, mixed = uniform_blocks(view, 4)
 check(mixed > 500, "InteractiveReduction 1: interactive renders cast every pixel")
 cup_display.InteractiveReduction = 2
 view.LODThreshold = 20.0
+
+
+# Opacity 0.35 (the GUI's look for Pi Surface), depth peeling on (ParaView's default):
+# every pixel is the opaque picture's colour blended over the background.
+def rgb(view):
+    window = view.GetRenderWindow()
+    w, h = window.GetSize()
+    pixels = vtkUnsignedCharArray()
+    window.GetRGBACharPixelData(0, 0, w - 1, h - 1, 0, pixels)
+    return [pixels.GetTuple4(n)[:3] for n in range(w * h)]
+
+
+view.DepthPeeling = 1
+view.UseFXAA = 0  # FXAA blends edges by their luminance, which the opacity changes
+Render(view)
+opaque = rgb(view)
+cup_display.Opacity = 0.35
+Render(view)
+translucent = rgb(view)
+cup_display.Opacity = 1.0
+background = opaque[0]
+covered = [n for n in range(len(opaque)) if opaque[n] != background]
+worst = max(abs(translucent[n][c] - (0.35 * opaque[n][c] + 0.65 * background[c]))
+            for n in covered for c in range(3))
+departing = [n for n in covered
+             if max(abs(translucent[n][c] - (0.35 * opaque[n][c] + 0.65 * background[c]))
+                    for c in range(3)) > 2.0]
+print("opacity 0.35: %d pixels covered, %d depart from the blend by more than 2 / 255 "
+      "(largest %.1f)" % (len(covered), len(departing), worst))
+check(len(covered) > 1000 and not departing,
+      "opacity 0.35 blends the surface over the background")
 
 # 2. Depth of the cup, perspective and parallel.
 depth_check(view, cup_path, "cup perspective")
