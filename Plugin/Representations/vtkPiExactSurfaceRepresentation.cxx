@@ -15,6 +15,10 @@
 #include "vtkPiExactSurfaceMapper.h"
 #include "vtkPiModelMesher.h"
 #include "vtkPolyData.h"
+#include "vtkPropCollection.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 
 vtkStandardNewMacro(vtkPiExactSurfaceRepresentation);
 
@@ -34,7 +38,7 @@ vtkPiExactSurfaceRepresentation::vtkPiExactSurfaceRepresentation()
   this->LODMapper = lod;
   // The quad is drawn in the opaque pass whatever the Opacity: ParaView's translucent pass
   // peels depth layers with shader code the quad does not have. A translucent exact
-  // surface blends over what the view drew before it.
+  // surface blends over what the view drew before it (see REQUEST_RENDER).
   this->Actor->SetForceOpaque(true);
   this->SetupDefaults();
 }
@@ -144,6 +148,20 @@ int vtkPiExactSurfaceRepresentation::ProcessViewRequest(
     // consumer of that output: the next one asks for the mesh unless it says otherwise.
     this->SetModelOnlyRequest(0);
     auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
+    // A translucent exact surface blends over what the renderer drew before it, so it
+    // goes last among the renderer's props: after the opaque objects it may lie in front
+    // of (the Primitives of a Pi Surface, a Pi Product's inputs). The collection is
+    // reordered in place; vtkRenderer::RemoveActor would release the mapper's resources.
+    if (view && this->Actor->GetProperty()->GetOpacity() < 1.0)
+    {
+      vtkPropCollection* props = view->GetRenderer()->GetViewProps();
+      if (props->IsItemPresent(this->Actor) && props->GetLastProp() != this->Actor)
+      {
+        vtkSmartPointer<vtkPVLODActor> actor = this->Actor;
+        props->RemoveItem(actor);
+        props->AddItem(actor);
+      }
+    }
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
     const bool lod = this->Actor->GetEnableLOD() != 0;
     const bool distributed = view &&

@@ -18,6 +18,10 @@
  * representation is hidden, so that another consumer of the same output that updates
  * later (a Surface display, a filter) gets the mesh.
  *
+ * Its actor is ForceOpaque (ParaView's depth peeling would need shader code the mapper's quad
+ * does not have); a translucent one is moved last among the renderer's props at each render,
+ * so that its first hits blend over every opaque object behind them.
+ *
  * An input without a model is reported once (a warning naming the input's producer)
  * and draws nothing. In parallel, rank p of n casts the rows [h·p/n, h·(p+1)/n) of the
  * view and ParaView's depth compositing assembles the image.

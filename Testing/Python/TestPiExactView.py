@@ -6,8 +6,8 @@
    (1ubq) from Molecular Pi Surface in Local mode (its atoms and settings, no
    PiSurfaceModel; perspective).
    Interactive renders, with or without LOD: one depth per 4 x 4 block; still renders:
-   every pixel. Opacity 0.35 with depth peeling: the opaque picture blended over the
-   background, pixel by pixel.
+   every pixel. Opacity 0.35 with depth peeling and a sphere in the bowl shown after the
+   cup: the opaque cup blended over the picture without it, pixel by pixel.
 2. Depth: the view's Z buffer at every pixel against the depth of vtkPiRayCaster's
    CAMERA-mode first hit for the same camera and size (perspective and parallel): the
    same pixels hit, and each hit's point, unprojected from the Z buffer, within
@@ -192,8 +192,9 @@ cup_display.InteractiveReduction = 2
 view.LODThreshold = 20.0
 
 
-# Opacity 0.35 (the GUI's look for Pi Surface), depth peeling on (ParaView's default):
-# every pixel is the opaque picture's colour blended over the background.
+# Opacity 0.35 (the GUI's look for Pi Surface), depth peeling on (ParaView's default),
+# with an opaque Sphere source shown after the cup, in its bowl: every pixel the cup
+# covers is the opaque cup's colour blended over the picture without the cup.
 def rgb(view):
     window = view.GetRenderWindow()
     w, h = window.GetSize()
@@ -202,25 +203,37 @@ def rgb(view):
     return [pixels.GetTuple4(n)[:3] for n in range(w * h)]
 
 
+inside = Sphere(Center=[0, 0, -1.0], Radius=1.2, ThetaResolution=32, PhiResolution=32)
+inside_display = Show(inside, view)
+inside_display.DiffuseColor = [0.2, 0.4, 0.9]
 view.DepthPeeling = 1
 view.UseFXAA = 0  # FXAA blends edges by their luminance, which the opacity changes
 Render(view)
 opaque = rgb(view)
+cup_display.Visibility = 0
+Render(view)
+behind = rgb(view)
+cup_display.Visibility = 1
 cup_display.Opacity = 0.35
 Render(view)
 translucent = rgb(view)
 cup_display.Opacity = 1.0
-background = opaque[0]
-covered = [n for n in range(len(opaque)) if opaque[n] != background]
-worst = max(abs(translucent[n][c] - (0.35 * opaque[n][c] + 0.65 * background[c]))
-            for n in covered for c in range(3))
-departing = [n for n in covered
-             if max(abs(translucent[n][c] - (0.35 * opaque[n][c] + 0.65 * background[c]))
-                    for c in range(3)) > 2.0]
-print("opacity 0.35: %d pixels covered, %d depart from the blend by more than 2 / 255 "
-      "(largest %.1f)" % (len(covered), len(departing), worst))
-check(len(covered) > 1000 and not departing,
-      "opacity 0.35 blends the surface over the background")
+inside_display.Visibility = 0
+
+
+def departure(n):
+    return max(abs(translucent[n][c] - (0.35 * opaque[n][c] + 0.65 * behind[n][c]))
+               for c in range(3))
+
+
+covered = [n for n in range(len(opaque)) if opaque[n] != behind[n]]
+over_sphere = [n for n in covered if behind[n] != behind[0]]
+departing = [n for n in covered if departure(n) > 2.0]
+print("opacity 0.35: %d pixels covered (%d of them over the sphere), %d depart from the "
+      "blend by more than 2 / 255 (largest %.1f)"
+      % (len(covered), len(over_sphere), len(departing), max(map(departure, covered))))
+check(len(covered) > 1000 and len(over_sphere) > 1000 and not departing,
+      "opacity 0.35 blends the surface over what lies behind it")
 
 # 2. Depth of the cup, perspective and parallel.
 depth_check(view, cup_path, "cup perspective")
