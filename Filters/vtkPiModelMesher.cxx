@@ -17,10 +17,12 @@
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <dlfcn.h>
 #include <string>
@@ -231,6 +233,16 @@ int vtkPiModelMesher::OutputModelOnly(vtkPolyData* output)
     corners->InsertNextPoint(b[k & 1], b[2 + ((k >> 1) & 1)], b[4 + ((k >> 2) & 1)]);
   }
   output->SetPoints(corners);
+  // Factor on the corners runs over the model's factor indices 0 .. n-1, so that
+  // ParaView offers colouring by Factor with the model's range, as for the mesh.
+  vtkNew<vtkIntArray> factor;
+  factor->SetName("Factor");
+  const int last = std::max(in.Surface->GetNumberOfFactors() - 1, 0);
+  for (int k = 0; k < 8; ++k)
+  {
+    factor->InsertNextValue(static_cast<int>(std::lround(k * last / 7.0)));
+  }
+  output->GetPointData()->AddArray(factor);
   pisurf::RayPointOutput::AddModel(*in.Surface, b, output);
   vtkNew<vtkIntArray> flag;
   flag->SetName("PiModelOnly");

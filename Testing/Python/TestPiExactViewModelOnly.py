@@ -6,8 +6,9 @@ unless the only visible displays of port 0 are Pi Exact Surface representations
 
 1. A Pi Product of two Pi Primitives shown as Pi Exact Surface: moving a primitive
    re-casts the picture (the image changes) while the
-   product's port 0 holds the model alone (no cells, the 8 corners of the box, the
-   field data PiModelOnly and PiSurfaceModel with the moved primitive).
+   product's port 0 holds the model alone (no cells, the 8 corners of the box with a
+   Factor array over the model's factor indices, the field data PiModelOnly and
+   PiSurfaceModel with the moved primitive).
 2. The same display switched to Surface: the next render meshes again (cells), and the
    picture is the mesh's.
 3. Back to Pi Exact Surface, an edit leaves the model alone again; a Clip filter on the
@@ -62,6 +63,12 @@ def model_only(proxy, what):
           % (what, data.GetNumberOfCells(), data.GetNumberOfPoints()))
     check(fd.GetArray("PiModelOnly") is not None and fd.GetAbstractArray("PiSurfaceModel"),
           "%s: no PiModelOnly / PiSurfaceModel field data" % what)
+    # Coloring offers Factor, over the model's factor indices, as for the mesh.
+    factor = data.GetPointData().GetArray("Factor")
+    factors = algorithm.GetPiSurface().GetNumberOfFactors()
+    check(factor is not None and factor.GetRange() == (0.0, float(factors - 1)),
+          "%s: the corners' Factor does not run over 0 .. %d (%s)"
+          % (what, factors - 1, factor.GetRange() if factor else None))
     return fd.GetAbstractArray("PiSurfaceModel").GetValue(0) if fd.GetAbstractArray(
         "PiSurfaceModel") else ""
 
