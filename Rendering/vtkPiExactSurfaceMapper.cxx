@@ -175,13 +175,19 @@ void vtkPiExactSurfaceMapper::ReportReferences(vtkGarbageCollector* collector)
   vtkGarbageCollectorReport(collector, this->ModelData, "ModelData");
 }
 
+void vtkPiExactSurfaceMapper::UpdateInput()
+{
+  // As VTK's mappers do, unless Static: a prop without bounds is culled before it renders.
+  if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)
+  {
+    this->Update();
+  }
+}
+
 double* vtkPiExactSurfaceMapper::GetBounds()
 {
   vtkMath::UninitializeBounds(this->Bounds);
-  if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)
-  {
-    this->Update(); // as VTK's mappers do: the renderer culls a prop without bounds
-  }
+  this->UpdateInput();
   vtkDataObject* data =
     this->GetNumberOfInputConnections(0) ? this->GetInputDataObject(0, 0) : this->ModelData;
   if (auto* ds = vtkDataSet::SafeDownCast(data))
@@ -242,10 +248,7 @@ void vtkPiExactSurfaceMapper::Render(vtkRenderer* ren, vtkActor* actor)
     }
     return;
   }
-  if (this->GetNumberOfInputConnections(0) > 0 && !this->Static)
-  {
-    this->Update(); // the input's pipeline, as VTK's mappers do
-  }
+  this->UpdateInput();
   vtkDataObject* source = this->ModelData
     ? this->ModelData
     : (this->GetNumberOfInputConnections(0) ? this->GetInputDataObject(0, 0) : nullptr);

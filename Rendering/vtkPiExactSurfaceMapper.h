@@ -137,6 +137,8 @@ protected:
   ~vtkPiExactSurfaceMapper() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void ReportReferences(vtkGarbageCollector* collector) override;
+  // Updates the input's pipeline (when connected and not Static).
+  void UpdateInput();
 
   vtkDataObject* ModelData = nullptr;
   int ReductionFactor = 1;

@@ -69,13 +69,28 @@ def set_camera(view, position, focal, up, parallel, scale=1.0, angle=30.0):
     view.CameraViewAngle = angle
 
 
-def depth_check(view, path, what):
-    """Z buffer of the rendered view against the caster's first hits."""
-    Render(view)
+def z_buffer(view):
+    """The view window's size and its Z buffer (as last rendered)."""
     window = view.GetRenderWindow()
     w, h = window.GetSize()
     z = vtkFloatArray()
     window.GetZbufferData(0, 0, w - 1, h - 1, z)
+    return w, h, z
+
+
+def drawn_pixels(view):
+    """How many pixels of a new render of the view have a depth nearer than the far plane."""
+    Render(view)
+    w, h, z = z_buffer(view)
+    # len, not sum: running a Programmable Source's script rebinds sum in this
+    # interpreter to the numpy_interface algorithm.
+    return len([n for n in range(w * h) if z.GetValue(n) < 1.0])
+
+
+def depth_check(view, path, what):
+    """Z buffer of the rendered view against the caster's first hits."""
+    Render(view)
+    w, h, z = z_buffer(view)
     check(z.GetNumberOfTuples() == w * h, "%s: Z buffer of %d values" % (what, z.GetNumberOfTuples()))
     renderer = view.GetRenderer()
     camera = renderer.GetActiveCamera()
@@ -156,10 +171,7 @@ check(cup_display.Representation == "Pi Exact Surface", "the representation type
 # holds one depth, at ParaView's default LOD Threshold (the 8 points the display gets
 # are far below it) and with level of detail; still renders cast every pixel again.
 def uniform_blocks(view, n):
-    window = view.GetRenderWindow()
-    w, h = window.GetSize()
-    z = vtkFloatArray()
-    window.GetZbufferData(0, 0, w - 1, h - 1, z)
+    w, h, z = z_buffer(view)
     uniform = mixed = 0
     for bj in range(h // n):
         for bi in range(w // n):
@@ -289,10 +301,7 @@ text = messages.GetOutput()
 print("messages of the model-less input:\n" + text)
 check(text.count("PiSurfaceModel") == 1, "one warning about the missing model")
 check("vtkSphereSource" in text, "the warning names the source")
-window = view.GetRenderWindow()
-z = vtkFloatArray()
-w, h = window.GetSize()
-window.GetZbufferData(0, 0, w - 1, h - 1, z)
+w, h, z = z_buffer(view)
 check(all(z.GetValue(n) >= 1.0 for n in range(w * h)), "nothing drawn for the sphere")
 
 sphere_display.Visibility = 0
@@ -333,19 +342,9 @@ print("messages of the refused model:\n" + text)
 check(text.count("Invalid PiSurfaceModel") == 1, "one error for the refused model")
 check("coefficient overflow" in text and "bowl base ellipsoid" in text,
       "the error says what is wrong and where")
-
-
-def covered():
-    Render(view)
-    z = vtkFloatArray()
-    w, h = window.GetSize()
-    window.GetZbufferData(0, 0, w - 1, h - 1, z)
-    return len([n for n in range(w * h) if z.GetValue(n) < 1.0])
-
-
-check(covered() == 0, "nothing drawn for the refused model")
+check(drawn_pixels(view) == 0, "nothing drawn for the refused model")
 carry(cup_text)
-drawn = covered()
+drawn = drawn_pixels(view)
 print("pixels covered once the model is valid: %d" % drawn)
 check(drawn > W * H // 20, "the valid model draws")
 
